@@ -1,0 +1,132 @@
+"""Imposed ground displacement histories X_g(t) (m) and velocities (m/s)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+
+def _number(name, value, *, positive=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValueError(f"excitation {name!r} must be a number, got {value!r}")
+    value = float(value)
+    if not np.isfinite(value):
+        raise ValueError(f"excitation {name!r} must be finite, got {value!r}")
+    if positive and value <= 0:
+        raise ValueError(f"excitation {name!r} must be > 0, got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Sine:
+    """X_g(t) = X_g,max sin(omega t) on 0 <= t <= duration, with the analytic velocity."""
+
+    amplitude: float  # X_g,max (m)
+    omega: float  # omega_g (rad/s)
+    duration: float  # t_g (s)
+    kind = "sine"
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", _number("amplitude", self.amplitude))
+        object.__setattr__(self, "omega", _number("omega", self.omega))
+        object.__setattr__(self, "duration", _number("duration", self.duration, positive=True))
+
+    t_start = 0.0
+
+    @property
+    def t_end(self):
+        return self.duration
+
+    def displacement(self, t):
+        return self.amplitude * np.sin(self.omega * np.asarray(t, dtype=float))
+
+    def velocity(self, t):
+        return self.amplitude * self.omega * np.cos(self.omega * np.asarray(t, dtype=float))
+
+    def attrs(self) -> dict:
+        return {"excitation": "sine", "amplitude_m": self.amplitude, "omega_rad_per_s": self.omega,
+                "duration_s": self.duration}
+
+
+@dataclass(frozen=True, eq=False)
+class Table:
+    """Sampled X_g: linear interpolation between samples; the velocity is the interpolated
+    second-order central difference of the samples (numpy.gradient)."""
+
+    time: np.ndarray  # (n,) s, strictly increasing
+    displacement_samples: np.ndarray  # (n,) m
+    source: str = "arrays"
+    kind = "table"
+
+    def __post_init__(self):
+        t = np.asarray(self.time, dtype=float)
+        x = np.asarray(self.displacement_samples, dtype=float)
+        if t.ndim != 1 or x.shape != t.shape:
+            raise ValueError(f"table excitation ({self.source}): time and displacement must be "
+                             f"1-D of equal length, got shapes {t.shape} and {x.shape}")
+        if t.size < 2:
+            raise ValueError(f"table excitation ({self.source}): needs at least 2 samples, got {t.size}")
+        for name, a in (("time", t), ("displacement", x)):
+            bad = ~np.isfinite(a)
+            if bad.any():
+                i = int(np.argmax(bad))
+                raise ValueError(f"table excitation ({self.source}): {name} sample {i} is not "
+                                 f"finite ({a[i]!r})")
+        steps = np.diff(t)
+        if (steps <= 0).any():
+            i = int(np.argmax(steps <= 0))
+            raise ValueError(f"table excitation ({self.source}): time must increase strictly; "
+                             f"sample {i + 1} ({t[i + 1]!r} s) follows {t[i]!r} s")
+        object.__setattr__(self, "time", t)
+        object.__setattr__(self, "displacement_samples", x)
+
+    @classmethod
+    def from_csv(cls, path) -> Table:
+        """Read a CSV with a header naming the columns ``time`` (s) and ``displacement`` (m)."""
+        path = Path(path)
+        if not path.is_file():
+            raise ValueError(f"table excitation: file {str(path)!r} does not exist")
+        with path.open() as fh:
+            header = [h.strip() for h in fh.readline().strip().split(",")]
+        if "time" not in header or "displacement" not in header:
+            raise ValueError(f"table excitation: {str(path)!r} must have a header with columns "
+                             f"'time' and 'displacement', got {header}")
+        try:
+            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        except ValueError as err:
+            raise ValueError(f"table excitation: {str(path)!r} is not numeric CSV: {err}") from None
+        if data.shape[0] == 0:
+            raise ValueError(f"table excitation: {str(path)!r} has no data rows")
+        return cls(data[:, header.index("time")], data[:, header.index("displacement")],
+                   source=str(path))
+
+    @property
+    def t_start(self):
+        return float(self.time[0])
+
+    @property
+    def t_end(self):
+        return float(self.time[-1])
+
+    def displacement(self, t):
+        return np.interp(t, self.time, self.displacement_samples)
+
+    def velocity(self, t):
+        return np.interp(t, self.time, np.gradient(self.displacement_samples, self.time))
+
+    def attrs(self) -> dict:
+        return {"excitation": "table", "table_source": self.source,
+                "table_samples": int(self.time.size)}
+
+
+def step_times(excitation, dt) -> np.ndarray:
+    """t_n = t_start + n dt, n = 0..N, the last step ending at or before t_end."""
+    dt = _number("dt", dt, positive=True)
+    span = excitation.t_end - excitation.t_start
+    if dt > span * (1 + 1e-12):
+        raise ValueError(f"dt = {dt!r} s is larger than the excitation's duration {span!r} s")
+    ratio = span / dt
+    n = round(ratio) if abs(ratio - round(ratio)) < 1e-9 * max(1.0, ratio) else int(np.floor(ratio))
+    return excitation.t_start + dt * np.arange(n + 1)

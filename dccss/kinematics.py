@@ -1,0 +1,148 @@
+"""Planar rigid-body kinematics of the three bodies (Eqs. 1-3) and the pad-plate contacts.
+
+Configurations are real arrays q of shape (..., 9) ordered as Eq. 4:
+[R_x^1, R_y^1, theta^1, R_x^2, R_y^2, theta^2, R_x^3, R_y^3, theta^3]; leading dimensions
+are a batch. Points and vectors of the plane are complex numbers x + iy, so that Eq. 1,
+r = R + A(theta) u, reads r = R + e^{i theta} u, and a . b = Re(a conj(b)).
+
+The functions work on one corner at a time, with components that are scalars (one case: the
+fast path) or arrays (a batch): the same expressions serve both.
+"""
+
+from __future__ import annotations
+
+import cmath
+from dataclasses import dataclass
+
+import numpy as np
+
+CORNERS = ("A", "B", "C", "D")
+RB1, RB2, RB3 = 0, 3, 6  # index of each body's R_x in q
+NORMALS = ("signed", "unsigned")
+_CORNER_DEF = {"A": (RB1, -1.0), "B": (RB1, 1.0), "C": (RB3, -1.0), "D": (RB3, 1.0)}
+
+
+def expi(theta):
+    """e^{i theta} for a scalar or an array."""
+    return cmath.exp(1j * theta) if np.ndim(theta) == 0 else np.exp(1j * theta)
+
+
+def dot(a, b):
+    """Scalar product of planar vectors given as complex numbers."""
+    return a.real * b.real + a.imag * b.imag
+
+
+def frames(q):
+    """Positions R (complex) and e^{i theta} of RB1, RB2, RB3: [(R^1, e^1), (R^2, e^2), (R^3, e^3)].
+
+    For one configuration (q of shape (9,)) the values are Python scalars, for speed.
+    """
+    if np.ndim(q) == 1:
+        x = q.tolist()
+        return [(complex(x[b], x[b + 1]), cmath.exp(1j * x[b + 2])) for b in (RB1, RB2, RB3)]
+    return [(q[..., b] + 1j * q[..., b + 1], np.exp(1j * q[..., b + 2])) for b in (RB1, RB2, RB3)]
+
+
+@dataclass(frozen=True, eq=False)
+class Corner:
+    """A pad corner and the terms of the plate it bears on, derived once.
+
+    body : RB1 or RB3; side : -1 (left) or +1 (right); u2 : pad-frame position (complex);
+    radius, centre : the plate's concave circle (centre in the plate frame, complex);
+    sign : +1 on RB1 (circle centre above the face), -1 on RB3. Fields may be batch arrays.
+    """
+
+    name: str
+    body: int
+    side: object
+    u2: object
+    radius: object
+    centre: object
+    sign: float
+
+    @classmethod
+    def of(cls, geometry, name) -> Corner:
+        body, side = _CORNER_DEF[name]
+        lower = body == RB1
+        half = geometry.A1 if lower else geometry.A3
+        y = -geometry.B if lower else geometry.B
+        centre = geometry.circle_centres[..., 0 if lower else 1, 1] * 1j
+        radius = geometry.R1 if lower else geometry.R3
+        return cls(name, body, side, _scalar(side * half + 1j * y), radius, _scalar(centre),
+                   1.0 if lower else -1.0)
+
+    def where(self, mask, other: Corner) -> Corner:
+        """Per case: ``other`` where mask is True, self elsewhere (same plate)."""
+        if np.ndim(mask) == 0:
+            return other if mask else self
+        return Corner(f"{self.name}/{other.name}", self.body, np.where(mask, other.side, self.side),
+                      np.where(mask, other.u2, self.u2), self.radius,
+                      np.where(mask, other.centre, self.centre), self.sign)
+
+
+def _scalar(x):
+    return complex(x) if np.ndim(x) == 0 else x
+
+
+def all_corners(geometry) -> tuple[Corner, ...]:
+    return tuple(Corner.of(geometry, name) for name in CORNERS)
+
+
+def position(F, corner: Corner):
+    """Global position of the corner (complex); F = frames(q)."""
+    R2, e2 = F[1]
+    return R2 + e2 * corner.u2
+
+
+def circle_centre(F, corner: Corner):
+    """Global position of the concave circle centre of the corner's plate (complex)."""
+    R, e = F[corner.body // 3]
+    return R + e * corner.centre
+
+
+def local(F, corner: Corner):
+    """The corner's position in its plate's frame (complex)."""
+    R, e = F[corner.body // 3]
+    return (position(F, corner) - R) * e.conjugate()
+
+
+def interpenetration(q, geometry):
+    """Signed interpenetration I_A, I_B, I_C, I_D (..., 4) (m), positive into the plate,
+    measured along the radius through the corner: |r_P - C^j| - R^j."""
+    F = frames(q)
+    return np.stack([np.abs(position(F, c) - circle_centre(F, c)) - c.radius
+                     for c in all_corners(geometry)], axis=-1)
+
+
+def contact_point(F, corner: Corner, normals="signed"):
+    """Previous contact point: radial projection of the corner onto its concave circle.
+
+    Returns the plate-frame point and unit normal (complex), the normal pointing from the point
+    to the circle centre (Eq. 7). With ``normals="unsigned"`` the normal is built from |alpha|
+    instead of the signed contact angle alpha (the authors' evident computation): it is
+    mirrored when the point lies across the plate axis from its corner.
+    """
+    d = local(F, corner) - corner.centre
+    n = -d / abs(d)
+    point = corner.centre - corner.radius * n
+    if normals == "unsigned":
+        n = -corner.side * abs(n.real) + 1j * n.imag
+    elif normals != "signed":
+        raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
+    return point, n
+
+
+def contact_angle(normal, corner: Corner):
+    """Contact angle alpha (rad) of Eqs. 8-11 from the plate-frame normal
+    n = (-s sin alpha, v cos alpha), v = +1 on RB1, -1 on RB3: positive towards the corner's side."""
+    return np.arctan2(-corner.side * np.real(normal), corner.sign * np.imag(normal))
+
+
+def clearance(q, geometry):
+    """Horizontal clearance (..., 2) between the pad and the retaining rings of RB1 and RB3 (m):
+    R^j sin(alpha^j) - max |x| of the plate's two corners in the plate frame. Negative when the
+    pad has passed the ring: the device capacity is exceeded."""
+    F = frames(q)
+    reach = [np.abs(np.real(local(F, c))) for c in all_corners(geometry)]
+    return geometry.ring_inner_x - np.stack(
+        [np.maximum(reach[0], reach[1]), np.maximum(reach[2], reach[3])], axis=-1)
