@@ -83,16 +83,22 @@ class ConstraintSet:
     def row_labels(self) -> list[str]:
         raise NotImplementedError
 
-    def contact(self, q):
-        """Contact rows g (..., m) and their Jacobian dg/dq (..., m, 9)."""
+    def contact(self, q, columns=tuple(range(9))):
+        """Contact rows g (..., m) and their Jacobian dg/dq (..., m, len(columns)), by default
+        on all nine coordinates."""
         rows = self.rows(frames(q))
+        if q.ndim == 1:  # one case: Python scalars, assembled in one call
+            return (np.array([gi for gi, _ in rows]),
+                    np.array([[entries.get(c, 0.0) for c in columns] for _, entries in rows]))
         shape = q.shape[:-1]
+        where = {c: j for j, c in enumerate(columns)}
         g = np.empty(shape + (len(rows),))
-        J = np.zeros(shape + (len(rows), 9))
+        J = np.zeros(shape + (len(rows), len(columns)))
         for i, (gi, entries) in enumerate(rows):
             g[..., i] = gi
             for col, value in entries.items():
-                J[..., i, col] = value
+                if col in where:
+                    J[..., i, where[col]] = value
         return g, J
 
     def prescribe(self, q):

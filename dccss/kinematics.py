@@ -35,10 +35,10 @@ def dot(a, b):
 def frames(q):
     """Positions R (complex) and e^{i theta} of RB1, RB2, RB3: [(R^1, e^1), (R^2, e^2), (R^3, e^3)].
 
-    For one configuration (q of shape (9,)) the values are Python scalars, for speed.
+    For one configuration (q of shape (9,), or a list) the values are Python scalars, for speed.
     """
-    if np.ndim(q) == 1:
-        x = q.tolist()
+    if isinstance(q, list) or q.ndim == 1:
+        x = q if isinstance(q, list) else q.tolist()
         return [(complex(x[b], x[b + 1]), cmath.exp(1j * x[b + 2])) for b in (RB1, RB2, RB3)]
     return [(q[..., b] + 1j * q[..., b + 1], np.exp(1j * q[..., b + 2])) for b in (RB1, RB2, RB3)]
 

@@ -31,7 +31,8 @@ def _start(geometry, Xg, theta2_0):
         raise ValueError(f"Xg must hold at least two step values along its first axis, got shape {Xg.shape}")
     q0 = geometry.compatible(theta2_0, Xg[0])
     shape = np.broadcast_shapes(q0.shape[:-1], Xg.shape[1:])
-    Xg = np.broadcast_to(Xg, Xg.shape[:1] + shape)
+    T = Xg.shape[0]
+    Xg = np.broadcast_to(Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:]), (T,) + shape)
     # one case runs on Python scalars (fast); a batch on arrays
     steps = Xg.tolist() if not shape else Xg
     return np.broadcast_to(q0, shape + (9,)), shape, steps
@@ -70,7 +71,8 @@ def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.Ne
         if n == 0:
             continue
         cset = Compliant(corners, Xg[n], Rx3, *zip(*data))
-        result = newton.solve(cset, q[n - 1], options, _context(n, times, cset.phase))
+        guess = 2 * q[n - 1] - q[n - 2] if n > 1 else q[n - 1]  # linear predictor
+        result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
         q[n], iterations[n], residual[n] = result.q, result.iterations, result.residual
     return {"q": q, "point": point, "normal": normal, "newton_iterations": iterations,
             "residual": residual, "Rx3": Rx3}
@@ -114,9 +116,13 @@ def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.N
         corners = (fixed["BC"] if down else fixed["AD"]) if not shape else diagonal(geometry, bc[n])
         F = frames(q[n - 1])
         stick = Sticking(corners, Xg[n], Rx3, [local(F, c) for c in corners])
-        r1 = newton.solve(stick, q[n - 1], options, _context(n, times, stick.phase))
+        # predictors: the previous step's sticking and slipping increments, if on the same diagonal
+        same = (bc[n] == bc[n - 1])[..., None] if n > 1 else False
+        guess = np.where(same, q[n - 1] + q_stick[n - 1] - q[n - 2], q[n - 1])
+        r1 = newton.solve(stick, guess, options, _context(n, times, stick.phase))
         slip = slip_set(geometry, corners, r1.q, normals)
-        r2 = newton.solve(slip, r1.q, options, _context(n, times, slip.phase))
+        guess = np.where(same, r1.q + q[n - 1] - q_stick[n - 1], r1.q)
+        r2 = newton.solve(slip, guess, options, _context(n, times, slip.phase))
         q_stick[n], q[n] = r1.q, r2.q
         its["stick"][n], its["slip"][n] = r1.iterations, r2.iterations
         res["stick"][n], res["slip"][n] = r1.residual, r2.residual

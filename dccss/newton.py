@@ -1,8 +1,12 @@
-"""Newton-Raphson on a constraint set (Eqs. 13-15), batched over leading dimensions.
+"""Newton-Raphson on a constraint set (Eqs. 13-15), for one case or a batch.
 
 The prescribed unit rows of a set are linear, so one Newton step solves them exactly; the
 solver applies it first and then iterates C_q[contact, free] dq = -g on the contact rows. This
 is block elimination of Eq. 13, not a different method: the iterates are Newton's.
+
+One case (q0 of shape (9,)) runs on Python scalars with LAPACK's gesv, avoiding numpy's
+per-call overhead on 4 x 4 systems; a batch (q0 of shape (..., 9)) stacks the Jacobians and
+solves them with ``numpy.linalg.solve``. Both evaluate the same constraint rows.
 """
 
 from __future__ import annotations
@@ -10,8 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import lapack
 
 from .constraints import Q_NAMES
+from .kinematics import frames
 
 
 class ConvergenceError(RuntimeError):
@@ -30,9 +36,11 @@ class NewtonOptions:
     max_iter: int = 25
 
     def __post_init__(self):
-        if not (np.isfinite(self.tol) and self.tol > 0):
+        if isinstance(self.tol, bool) or not isinstance(self.tol, (int, float)) or not (
+            np.isfinite(self.tol) and self.tol > 0
+        ):
             raise ValueError(f"Newton tolerance 'tol' must be a finite number > 0, got {self.tol!r}")
-        if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
+        if isinstance(self.max_iter, bool) or not isinstance(self.max_iter, (int, np.integer)) or self.max_iter < 1:
             raise ValueError(f"Newton 'max_iter' must be an integer >= 1, got {self.max_iter!r}")
 
 
@@ -43,20 +51,10 @@ class NewtonResult:
     residual: np.ndarray  # (...,) final max |contact residual| (m)
 
 
-def _where(context: dict | None, index) -> str:
-    parts = []
-    ctx = dict(context or {})
-    if index:
-        parts.append(f"case {index}")
-    for key in ("case", "step", "time", "phase"):
-        if key in ctx:
-            value = ctx[key]
-            parts.append(f"{key} {value:.6g} s" if key == "time" else f"{key} {value}")
-    return ", ".join(parts)
-
-
 def solve(cset, q0, options: NewtonOptions = NewtonOptions(), context: dict | None = None):
     """Solve the constraint set ``cset`` from the initial guess ``q0`` (..., 9).
+
+    ``context`` (step, time, phase, case) is quoted in error messages.
 
     Raises
     ------
@@ -67,39 +65,76 @@ def solve(cset, q0, options: NewtonOptions = NewtonOptions(), context: dict | No
         the message names the case, step, time, phase, residual and the worst constraint row.
     """
     q = cset.prescribe(q0)
-    free = list(cset.free)
+    return (_solve_batch if q.ndim > 1 else _solve_one)(cset, q, options, context)
+
+
+def _solve_one(cset, q, options, context):
+    x, free, tol = q.tolist(), cset.free, options.tol
+    for it in range(options.max_iter + 1):
+        rows = cset.rows(frames(x))
+        g = [gi for gi, _ in rows]
+        if all(abs(gi) <= tol for gi in g):  # NaN fails
+            return NewtonResult(np.array(x), np.int32(it), float(np.max(np.abs(g))))
+        if it == options.max_iter:
+            break
+        J = np.array([[entries.get(c, 0.0) for c in free] for _, entries in rows])
+        _, _, dq, info = lapack.dgesv(J, np.array(g))
+        if info > 0:
+            _singular(cset, J, context, ())
+        for c, d in zip(free, dq.tolist()):
+            x[c] -= d
+    _not_converged(cset, np.array(g), options, context, ())
+
+
+def _solve_batch(cset, q, options, context):
+    free, columns = cset.free, np.array(cset.free)
     iterations = np.zeros(q.shape[:-1], dtype=np.int32)
     for it in range(options.max_iter + 1):
-        g, J = cset.contact(q)
-        norm = np.max(np.abs(g), axis=-1)
+        g, J = cset.contact(q, free)
+        norm = np.abs(g).max(axis=-1)
         active = ~(norm <= options.tol)  # NaN counts as not converged
         if not active.any():
             return NewtonResult(q, iterations, norm)
         if it == options.max_iter:
             break
-        Jf = J[..., free]
         try:
-            dq = np.linalg.solve(Jf, -g[..., None])[..., 0]
+            dq = np.linalg.solve(J, g[..., None])[..., 0]
         except np.linalg.LinAlgError:
-            det = np.linalg.det(Jf)
-            index = np.unravel_index(np.argmin(np.abs(det)), det.shape) if det.ndim else ()
-            raise SingularJacobianError(
-                f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
-                f"|C_q| = {float(det[index]):.3e}. The constraints do not fix the free "
-                f"coordinates {[Q_NAMES[k] for k in free]} here; check the geometry (pad wider "
-                "than its plate, tan alpha = A/B) and the step size."
-            ) from None
-        dq = np.where(active[..., None], dq, 0.0)
-        q[..., free] += dq
+            det = np.abs(np.linalg.det(J))
+            _singular(cset, J, context, np.unravel_index(np.argmin(det), det.shape))
+        dq[~active] = 0.0
+        q[..., columns] -= dq
         iterations += active
-    index = np.unravel_index(np.argmax(np.where(np.isnan(norm), np.inf, norm)), norm.shape)
-    row = int(np.nanargmax(np.abs(g[index]))) if np.isfinite(g[index]).any() else 0
-    labels = cset.row_labels()
+    norm = np.where(np.isnan(norm), np.inf, norm)
+    index = np.unravel_index(np.argmax(norm), norm.shape)
+    _not_converged(cset, g[index], options, context, index)
+
+
+def _where(context, index) -> str:
+    ctx = dict(context or {})
+    parts = [f"batch index {index}"] if index else []
+    for key in ("case", "step", "time", "phase"):
+        if key in ctx:
+            parts.append(f"time {ctx[key]:.6g} s" if key == "time" else f"{key} {ctx[key]}")
+    return ", ".join(parts)
+
+
+def _singular(cset, J, context, index):
+    raise SingularJacobianError(
+        f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
+        f"|C_q| = {float(np.linalg.det(J[index])):.3e}. The constraints do not fix the free "
+        f"coordinates {[Q_NAMES[k] for k in cset.free]} here; check the geometry (pad wider "
+        "than its plate, tan alpha = A/B) and the step size."
+    )
+
+
+def _not_converged(cset, g, options, context, index):
+    a = np.where(np.isnan(g), np.inf, np.abs(g))
+    row = int(np.argmax(a))
     raise ConvergenceError(
         f"Newton-Raphson did not converge in {cset.phase} ({_where(context, index)}): after "
-        f"{options.max_iter} iterations the residual is {float(norm[index]):.3e} m > tol "
-        f"{options.tol:.1e} m; largest: {labels[row]} = {float(g[index][row]):.3e}. Likely "
+        f"{options.max_iter} iterations the residual is {float(a[row]):.3e} m > tol "
+        f"{options.tol:.1e} m; largest: {cset.row_labels()[row]} = {float(g[row]):.3e}. Likely "
         "causes: a step too large for the geometry (reduce dt or the amplitude), the pad "
         "beyond the plate capacity, or a tolerance below round-off (raise tol)."
     )
-
