@@ -1,0 +1,29 @@
+"""dccss: kinematics of Double Concave Curved Surface Sliders (double friction pendulum isolators).
+
+A planar three-rigid-body model of a DCCSS under an imposed ground displacement, solved by
+Newton-Raphson on the nonlinear constraint equations of Bianco, Monti & Belfiore (Buildings 2021,
+11, 50), under two hypotheses: Compliant Sliding and Stick-Slip.
+
+Typical use::
+
+    from dccss import Geometry, Sine, simulate
+    g = Geometry.from_degrees(R1=1.0, R3=1.0, alpha1=21, alpha3=21, h2=0.15, alpha21=10,
+                              alpha23=10, hr1=0.02, hr3=0.02, hmin1=0.10, hmin3=0.10,
+                              tr1=0.0258, tr3=0.0258)
+    ds = simulate(g, Sine(amplitude=0.27, omega=30.0, duration=1.0), model="stick_slip", dt=0.001)
+    ds.to_netcdf("dfp1.nc")
+
+Modules: ``geometry`` (Table 1 parameters, derived lengths), ``kinematics`` (bodies, corners,
+contact points), ``constraints`` (the constraint sets and their Jacobians), ``newton`` (the
+solver), ``models`` (time steppers), ``excitation`` (X_g(t)), ``results`` (datasets),
+``simulate`` (one case in, one dataset out), ``case`` and ``cli`` (case files, ``dccss run``).
+"""
+
+from ._version import __version__
+from .excitation import Sine, Table
+from .geometry import Geometry
+from .newton import ConvergenceError, NewtonOptions, SingularJacobianError
+from .simulate import breakaway, simulate
+
+__all__ = ["__version__", "Geometry", "Sine", "Table", "simulate", "breakaway", "NewtonOptions",
+           "ConvergenceError", "SingularJacobianError"]

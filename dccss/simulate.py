@@ -1,0 +1,71 @@
+"""One case in, one dataset out: time histories and the breakaway (first-step) analysis."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from . import models
+from .constraints import Compliant
+from .excitation import step_times
+from .kinematics import CORNERS, all_corners
+from .newton import NewtonOptions
+from .kinematics import interpenetration
+from .results import REFERENCE, _var, geometry_attrs, history_dataset
+from ._version import __version__
+
+
+def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
+             options: NewtonOptions = NewtonOptions(), attrs: dict | None = None) -> xr.Dataset:
+    """Run one case and return its dataset.
+
+    Parameters
+    ----------
+    geometry : Geometry (scalar fields).
+    excitation : ``excitation.Sine`` or ``excitation.Table``.
+    model : 'compliant' or 'stick_slip'.
+    dt : time step (s); the steps are t_n = t_start + n dt up to the excitation's end.
+    theta2_0 : pad rotation at t_0 (rad); the start is the compatible configuration there.
+    normals : 'signed' (consistent) or 'unsigned' (the authors' |alpha|).
+    options : Newton-Raphson tolerance and iteration cap.
+    attrs : extra global attributes (e.g. a case id).
+    """
+    if model not in models.MODELS:
+        raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
+    if np.ndim(geometry.L) != 0:
+        raise ValueError("simulate runs one case: geometry fields must be scalars")
+    times = step_times(excitation, dt)
+    history = models.run(model, geometry, excitation.displacement(times), theta2_0,
+                         normals=normals, options=options, times=times)
+    return history_dataset(model, history, geometry, times, excitation, theta2_0=theta2_0, dt=dt,
+                           normals=normals, tol=options.tol, attrs=attrs)
+
+
+def breakaway(geometry, theta2_0, dXg, *, normals="signed",
+              options: NewtonOptions = NewtonOptions(), attrs: dict | None = None) -> xr.Dataset:
+    """Fig. 7: one compliant step of size dXg (m) from the compatible configuration at each
+    theta^2(t_0) (rad, 1-D array); interpenetration I_A..I_D after the step and |C_q|."""
+    theta2_0 = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+    if theta2_0.ndim != 1 or theta2_0.size == 0:
+        raise ValueError("theta2_0 must be a non-empty 1-D grid of initial pad rotations")
+    Xg = np.array([[0.0], [float(dXg)]]) * np.ones_like(theta2_0)
+    h = models.compliant(geometry, Xg, theta2_0, normals=normals, options=options)
+    q = h["q"][1]
+    I = interpenetration(q, geometry)
+    corners = all_corners(geometry)
+    cset = Compliant(corners, q[..., 0], h["Rx3"], [h["point"][1][..., i] for i in range(4)],
+                     [h["normal"][1][..., i] for i in range(4)])
+    d = ("theta2_0",)
+    data = {f"I_{c}": _var(d, I[:, i], "m", f"interpenetration at corner {c}2 after the first step")
+            for i, c in enumerate(CORNERS)}
+    data["det_Cq"] = _var(d, cset.determinant(q), "m", "determinant |C_q| (Eq. 29) of the first step")
+    data["theta2"] = _var(d, np.degrees(q[:, 5]), "degree", "pad rotation after the first step")
+    data["newton_iterations"] = _var(d, h["newton_iterations"][1], "1", "Newton-Raphson iterations")
+    ds = xr.Dataset(data, coords={"theta2_0": _var(d, np.degrees(theta2_0), "degree",
+                                                   "initial pad rotation theta2(t0)")})
+    ds.attrs = {"Conventions": "CF-1.11",
+                "title": "DCCSS breakaway: interpenetration at the first compliant sliding step",
+                "source": f"dccss {__version__}", "references": REFERENCE, "model": "compliant",
+                "normals": normals, "dXg_m": float(dXg), "dccss_version": __version__,
+                **geometry_attrs(geometry), **(attrs or {})}
+    return ds
