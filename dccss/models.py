@@ -20,7 +20,7 @@ import numpy as np
 
 from . import newton
 from .constraints import Compliant, Slipping, Sticking, diagonal
-from .kinematics import RB3, all_corners, circle_centre, contact_point, frames, local
+from .kinematics import RB3, all_corners, circle_centre, contact_point, dot, frames, local
 
 MODELS = ("compliant", "stick_slip")
 
@@ -85,11 +85,12 @@ def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
     C1, C3 = (circle_centre(F, c) for c in corners)
     e = (C3 - C1) / abs(C3 - C1)
     n12 = 1j * e
-    R2, R3 = F[1][0], F[2][0]
+    R3 = F[2][0]
     cos_theta = -e.imag  # C^3 lies below C^1: e = (sin theta, -cos theta)
     Ry3_rc = C1.imag - geometry.L * cos_theta + geometry.hs3 + geometry.R3  # Eq. 41
-    return Slipping(corners, q_stick, points, normals_, n12, (R2 * n12.conjugate()).real,
-                    (R3 * n12.conjugate()).real, Ry3_rc)
+    # k1: G^2 moves on the line through C^1 and C^3 (for a symmetric pad G^2 is already on it
+    # at the end of sticking, so this equals Eq. 38's G^2 . n12; for unequal caps it does not)
+    return Slipping(corners, q_stick, points, normals_, n12, dot(C1, n12), dot(R3, n12), Ry3_rc)
 
 
 def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),

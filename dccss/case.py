@@ -1,0 +1,168 @@
+"""Case files: one YAML document describing one run, validated key by key.
+
+Format (lengths in m, angles in degrees, times in s)::
+
+    prototype: {R1: 1.0, R3: 1.0, alpha1: 21.0, alpha3: 21.0, h2: 0.15, alpha21: 10.0,
+                alpha23: 10.0, hr1: 0.02, hr3: 0.02, hmin1: 0.10, hmin3: 0.10,
+                tr1: 0.0258, tr3: 0.0258}     # or the name of a Table 1 prototype: DFP1, DFP2
+    excitation: {kind: sine, amplitude: 0.1908, omega: 30.0, duration: 1.0}
+                # or {kind: table, file: record.csv}  (columns time, displacement; path
+                #     relative to the case file)
+    theta2_0: 0.0          # optional, default 0
+    dt: 0.01
+    model: compliant       # or stick_slip
+    normals: signed        # optional: signed (default) or unsigned
+    newton: {tol: 1.0e-12, max_iter: 25}   # optional
+    id: my-case            # optional, recorded in the dataset
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from .excitation import Sine, Table
+from .geometry import Geometry
+from .kinematics import NORMALS
+from .models import MODELS
+from .newton import NewtonOptions
+from .prototypes import TABLE1
+from .simulate import simulate
+
+REQUIRED = ("prototype", "excitation", "dt", "model")
+OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None}
+GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
+EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",)}
+
+
+class CaseError(ValueError):
+    """A case file or mapping is invalid; the message names the key."""
+
+
+def number(value, key, *, positive=False):
+    """A finite real number from a YAML value; the error names the key."""
+    if isinstance(value, str):
+        hint = ""
+        try:
+            float(value)
+            hint = " (YAML reads exponents without a decimal point, e.g. 1e-3, as strings: write 1.0e-3)"
+        except ValueError:
+            pass
+        raise CaseError(f"{key}: expected a number, got the string {value!r}{hint}")
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise CaseError(f"{key}: expected a number, got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not np.isfinite(value):
+        raise CaseError(f"{key}: expected a finite number, got {value!r}")
+    if positive and value <= 0:
+        raise CaseError(f"{key}: must be > 0, got {value!r}")
+    return value
+
+
+def choice(value, key, allowed):
+    if not isinstance(value, str) or value not in allowed:
+        raise CaseError(f"{key}: must be one of {list(allowed)}, got {value!r}")
+    return value
+
+
+def check_keys(mapping, key, required, optional=()):
+    if not isinstance(mapping, dict):
+        raise CaseError(f"{key}: expected a mapping, got {type(mapping).__name__} {mapping!r}")
+    unknown = sorted(set(mapping) - set(required) - set(optional), key=str)
+    if unknown:
+        allowed = sorted(set(required) | set(optional))
+        raise CaseError(f"{key}: unknown key(s) {unknown}; allowed: {allowed}")
+    missing = [k for k in required if k not in mapping]
+    if missing:
+        raise CaseError(f"{key}: missing key(s) {missing}")
+
+
+def geometry_from(value, key="prototype") -> Geometry:
+    """A Geometry from a Table 1 prototype name or a mapping of its 13 parameters."""
+    if isinstance(value, str):
+        if value not in TABLE1:
+            raise CaseError(f"{key}: unknown prototype {value!r}; known: {sorted(TABLE1)}")
+        value = TABLE1[value]
+    check_keys(value, key, GEOMETRY_KEYS)
+    params = {k: number(value[k], f"{key}.{k}") for k in GEOMETRY_KEYS}
+    try:
+        return Geometry.from_degrees(**params)
+    except ValueError as err:
+        raise CaseError(f"{key}: {err}") from None
+
+
+def excitation_from(value, base: Path, key="excitation"):
+    """A Sine or Table excitation from its mapping; table files are relative to ``base``."""
+    if not isinstance(value, dict):
+        raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
+    kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
+    check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind])
+    if kind == "sine":
+        return Sine(number(value["amplitude"], f"{key}.amplitude"),
+                    number(value["omega"], f"{key}.omega"),
+                    number(value["duration"], f"{key}.duration", positive=True))
+    if not isinstance(value["file"], str):
+        raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
+    try:
+        return Table.from_csv(base / value["file"])
+    except ValueError as err:
+        raise CaseError(f"{key}.file: {err}") from None
+
+
+@dataclass
+class Case:
+    geometry: Geometry
+    excitation: object
+    dt: float
+    model: str
+    theta2_0: float = 0.0  # rad
+    normals: str = "signed"
+    options: NewtonOptions = field(default_factory=NewtonOptions)
+    id: str | None = None
+
+    def run(self):
+        """Simulate the case: an xarray.Dataset."""
+        attrs = {"case_id": self.id} if self.id else None
+        return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
+                        theta2_0=self.theta2_0, normals=self.normals, options=self.options,
+                        attrs=attrs)
+
+
+def case_from(mapping, base: Path = Path(".")) -> Case:
+    """Validate a case mapping (as loaded from YAML); errors name the key."""
+    check_keys(mapping, "case", REQUIRED, OPTIONAL)
+    m = {**OPTIONAL, **mapping}
+    options = NewtonOptions()
+    if m["newton"] is not None:
+        check_keys(m["newton"], "newton", (), ("tol", "max_iter"))
+        tol = number(m["newton"].get("tol", options.tol), "newton.tol", positive=True)
+        max_iter = m["newton"].get("max_iter", options.max_iter)
+        if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
+            raise CaseError(f"newton.max_iter: expected an integer >= 1, got {max_iter!r}")
+        options = NewtonOptions(tol=tol, max_iter=max_iter)
+    if m["id"] is not None and not isinstance(m["id"], str):
+        raise CaseError(f"id: expected a string, got {m['id']!r}")
+    excitation = excitation_from(m["excitation"], base)
+    dt = number(m["dt"], "dt", positive=True)
+    span = excitation.t_end - excitation.t_start
+    if dt > span:
+        raise CaseError(f"dt: {dt!r} s is larger than the excitation's duration {span!r} s")
+    return Case(geometry=geometry_from(m["prototype"]), excitation=excitation, dt=dt,
+                model=choice(m["model"], "model", MODELS),
+                theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
+                normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"])
+
+
+def load_case(path) -> Case:
+    """Read and validate a YAML case file."""
+    path = Path(path)
+    if not path.is_file():
+        raise CaseError(f"case file {str(path)!r} does not exist")
+    try:
+        mapping = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as err:
+        raise CaseError(f"case file {str(path)!r} is not valid YAML: {err}") from None
+    return case_from(mapping, path.parent)
