@@ -88,17 +88,18 @@ class Table:
         path = Path(path)
         if not path.is_file():
             raise ValueError(f"table excitation: file {str(path)!r} does not exist")
-        with path.open() as fh:
-            header = [h.strip() for h in fh.readline().strip().split(",")]
+        lines = path.read_text().splitlines()
+        header = [h.strip() for h in lines[0].split(",")] if lines else []
         if "time" not in header or "displacement" not in header:
             raise ValueError(f"table excitation: {str(path)!r} must have a header with columns "
                              f"'time' and 'displacement', got {header}")
+        rows = [line for line in lines[1:] if line.strip()]
+        if not rows:
+            raise ValueError(f"table excitation: {str(path)!r} has no data rows")
         try:
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+            data = np.loadtxt(rows, delimiter=",", ndmin=2)
         except ValueError as err:
             raise ValueError(f"table excitation: {str(path)!r} is not numeric CSV: {err}") from None
-        if data.shape[0] == 0:
-            raise ValueError(f"table excitation: {str(path)!r} has no data rows")
         return cls(data[:, header.index("time")], data[:, header.index("displacement")],
                    source=str(path))
 

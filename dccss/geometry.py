@@ -281,7 +281,7 @@ class Geometry:
             ]
         )
         pts = np.vstack([outer[3:], arc, outer[:3], outer[3:4]])
-        pts[:, 1] -= hs  # origin at the centroid
+        pts[:, 1] += hs  # origin at the centroid, h_s below the most depressed point
         if plate == 3:
             pts[:, 1] *= -1
         return pts

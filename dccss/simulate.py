@@ -6,13 +6,12 @@ import numpy as np
 import xarray as xr
 
 from . import models
+from ._version import __version__
 from .constraints import Compliant
 from .excitation import step_times
-from .kinematics import CORNERS, all_corners
+from .kinematics import CORNERS, all_corners, interpenetration
 from .newton import NewtonOptions
-from .kinematics import interpenetration
 from .results import REFERENCE, _var, geometry_attrs, history_dataset
-from ._version import __version__
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",

@@ -1,0 +1,149 @@
+"""Case files and the ``dccss run`` command: valid runs, and errors that name the key."""
+
+import subprocess
+import sys
+
+import netCDF4
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from dccss.case import CaseError, case_from, load_case
+from dccss.cli import main
+from dccss.prototypes import TABLE1
+
+CASE = {
+    "prototype": dict(TABLE1["DFP1"]),
+    "excitation": {"kind": "sine", "amplitude": 0.1908, "omega": 30.0, "duration": 0.2},
+    "theta2_0": 0.0,
+    "dt": 0.01,
+    "model": "compliant",
+    "normals": "signed",
+}
+
+
+def write(tmp_path, mapping, name="case.yaml"):
+    path = tmp_path / name
+    path.write_text(yaml.safe_dump(mapping))
+    return path
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_cli_run_writes_dataset(tmp_path, model, capsys):
+    path = write(tmp_path, {**CASE, "model": model, "id": "dfp1-test"})
+    out = tmp_path / "sub" / "out.nc"
+    assert main(["run", str(path), "-o", str(out)]) == 0
+    assert "wrote" in capsys.readouterr().out
+    ds = xr.open_dataset(out)
+    assert ds.sizes["time"] == 21 and ds.attrs["model"] == model and ds.attrs["case_id"] == "dfp1-test"
+    for name in ["Xg", "Xg_dot", "Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3",
+                 "theta3", "I_A", "I_B", "I_C", "I_D", "newton_iterations"]:
+        assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
+    assert ds["theta2"].attrs["units"] == "degree" and ds["Ry3"].attrs["units"] == "m"
+    if model == "compliant":
+        assert "det_Cq" in ds
+    else:
+        assert np.isnan(ds["theta2_stick"][0]) and np.isfinite(ds["Ry3_stick"][1:]).all()
+    for key in ("R1_m", "alpha21_deg", "amplitude_m", "omega_rad_per_s", "dccss_version", "normals"):
+        assert key in ds.attrs
+    with netCDF4.Dataset(out) as nc:  # plain netCDF4 reads names and units
+        assert nc.variables["I_A"].units == "m"
+
+
+def test_python_m_entry_point(tmp_path):
+    path = write(tmp_path, CASE)
+    out = tmp_path / "out.nc"
+    r = subprocess.run([sys.executable, "-m", "dccss", "run", str(path), "-o", str(out), "-q"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert out.exists() and r.stdout == ""
+
+
+def test_prototype_by_name_and_table_excitation(tmp_path):
+    t = np.linspace(0, 0.2, 201)
+    np.savetxt(tmp_path / "rec.csv", np.column_stack([t, 0.05 * np.sin(30 * t)]), delimiter=",",
+               header="time,displacement", comments="")
+    sub = tmp_path / "cases"
+    sub.mkdir()
+    path = write(sub, {**CASE, "prototype": "DFP2", "excitation": {"kind": "table", "file": "../rec.csv"}})
+    case = load_case(path)
+    ds = case.run()
+    assert ds.attrs["alpha21_deg"] == pytest.approx(5.0)
+    assert ds["Xg"].values[10] == pytest.approx(0.05 * np.sin(3.0), abs=1e-9)
+
+
+def mutate(**changes):
+    case = {k: (dict(v) if isinstance(v, dict) else v) for k, v in CASE.items()}
+    for key, value in changes.items():
+        parts = key.split("__")
+        target = case
+        for p in parts[:-1]:
+            target = target[p]
+        if value is DELETE:
+            del target[parts[-1]]
+        else:
+            target[parts[-1]] = value
+    return case
+
+
+DELETE = object()
+BAD = [
+    (dict(colour="red"), r"case: unknown key\(s\) \['colour'\]"),
+    (dict(model=DELETE), r"case: missing key\(s\) \['model'\]"),
+    (dict(dt="1e-3"), "dt: expected a number, got the string '1e-3'.*write 1.0e-3"),
+    (dict(dt=-0.01), "dt: must be > 0"),
+    (dict(dt=5.0), "dt: 5.0 s is larger than the excitation's duration"),
+    (dict(model="pendulum"), r"model: must be one of \['compliant', 'stick_slip'\]"),
+    (dict(normals="absolute"), r"normals: must be one of \['signed', 'unsigned'\]"),
+    (dict(theta2_0=[1, 2]), "theta2_0: expected a number, got list"),
+    (dict(theta2_0=float("nan")), "theta2_0: expected a finite number"),
+    (dict(prototype="DFP9"), r"prototype: unknown prototype 'DFP9'; known: \['DFP1', 'DFP2'\]"),
+    (dict(prototype__R1="one"), "prototype.R1: expected a number, got the string 'one'"),
+    (dict(prototype__hr1=DELETE), r"prototype: missing key\(s\) \['hr1'\]"),
+    (dict(prototype__alpha21=25.0), "prototype: geometry parameter 'alpha21' must lie in 0 < alpha21 < alpha1"),
+    (dict(prototype__h2=0.0), "prototype: geometry parameter 'h2' is a length and must be > 0"),
+    (dict(excitation__kind="ramp"), r"excitation.kind: must be one of \['sine', 'table'\]"),
+    (dict(excitation__omega=True), "excitation.omega: expected a number, got bool"),
+    (dict(excitation__phase=0.0), r"excitation: unknown key\(s\) \['phase'\]"),
+    (dict(excitation={"kind": "table", "file": "missing.csv"}),
+     "excitation.file: table excitation: file .*missing.csv' does not exist"),
+    (dict(newton={"tol": 0.0}), "newton.tol: must be > 0"),
+    (dict(newton={"max_iter": 2.5}), "newton.max_iter: expected an integer >= 1"),
+    (dict(id=3), "id: expected a string"),
+]
+
+
+@pytest.mark.parametrize("changes, message", BAD, ids=[m[:40] for _, m in BAD])
+def test_invalid_case_names_key(tmp_path, changes, message):
+    with pytest.raises(CaseError, match=message):
+        case_from(mutate(**changes), tmp_path)
+
+
+def test_cli_error_exit_code_and_no_output(tmp_path, capsys):
+    path = write(tmp_path, mutate(dt="1e-3"))
+    out = tmp_path / "out.nc"
+    assert main(["run", str(path), "-o", str(out)]) == 2
+    assert "dt: expected a number" in capsys.readouterr().err
+    assert not out.exists() and list(tmp_path.iterdir()) == [path]
+
+
+def test_cli_solver_failure_exit_code(tmp_path, capsys):
+    path = write(tmp_path, mutate(newton={"tol": 1e-30, "max_iter": 2}))
+    out = tmp_path / "out.nc"
+    assert main(["run", str(path), "-o", str(out)]) == 3
+    err = capsys.readouterr().err
+    assert "did not converge" in err and "step 1" in err
+    assert not out.exists()
+
+
+def test_missing_and_malformed_case_file(tmp_path):
+    with pytest.raises(CaseError, match="does not exist"):
+        load_case(tmp_path / "none.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("prototype: [unclosed\n")
+    with pytest.raises(CaseError, match="not valid YAML"):
+        load_case(bad)
+    bad.write_text("- a list\n")
+    with pytest.raises(CaseError, match="case: expected a mapping"):
+        load_case(bad)
