@@ -6,6 +6,7 @@ Format (lengths in m, angles in degrees, times in s)::
                 alpha23: 10.0, hr1: 0.02, hr3: 0.02, hmin1: 0.10, hmin3: 0.10,
                 tr1: 0.0258, tr3: 0.0258}     # or the name of a Table 1 prototype: DFP1, DFP2
     excitation: {kind: sine, amplitude: 0.1908, omega: 30.0, duration: 1.0}
+                # amplitude may be "capacity": R1 sin(alpha1 - alpha21), Table 1's X_g,max
                 # or {kind: table, file: record.csv}  (columns time, displacement; path
                 #     relative to the case file)
     theta2_0: 0.0          # optional, default 0
@@ -18,6 +19,8 @@ Format (lengths in m, angles in degrees, times in s)::
 
 from __future__ import annotations
 
+import hashlib
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -94,14 +97,17 @@ def geometry_from(value, key="prototype") -> Geometry:
         raise CaseError(f"{key}: {err}") from None
 
 
-def excitation_from(value, base: Path, key="excitation"):
-    """A Sine or Table excitation from its mapping; table files are relative to ``base``."""
+def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
+    """A Sine or Table excitation from its mapping; table files are relative to ``base``; a sine
+    amplitude "capacity" is the device's R1 sin(alpha1 - alpha21)."""
     if not isinstance(value, dict):
         raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
     kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
     check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind])
     if kind == "sine":
-        return Sine(number(value["amplitude"], f"{key}.amplitude"),
+        amplitude = value["amplitude"]
+        amplitude = geometry.capacity1 if amplitude == "capacity" else number(amplitude, f"{key}.amplitude")
+        return Sine(amplitude,
                     number(value["omega"], f"{key}.omega"),
                     number(value["duration"], f"{key}.duration", positive=True))
     if not isinstance(value["file"], str):
@@ -122,13 +128,19 @@ class Case:
     normals: str = "signed"
     options: NewtonOptions = field(default_factory=NewtonOptions)
     id: str | None = None
+    parameters_hash: str | None = None
 
     def run(self):
         """Simulate the case: an xarray.Dataset."""
-        attrs = {"case_id": self.id} if self.id else None
+        attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
                         attrs=attrs)
+
+
+def parameters_hash(mapping) -> str:
+    """SHA-256 of a case mapping in canonical JSON (sorted keys): the provenance of a result."""
+    return hashlib.sha256(json.dumps(mapping, sort_keys=True, default=str).encode()).hexdigest()
 
 
 def case_from(mapping, base: Path = Path(".")) -> Case:
@@ -145,15 +157,17 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
         options = NewtonOptions(tol=tol, max_iter=max_iter)
     if m["id"] is not None and not isinstance(m["id"], str):
         raise CaseError(f"id: expected a string, got {m['id']!r}")
-    excitation = excitation_from(m["excitation"], base)
+    geometry = geometry_from(m["prototype"])
+    excitation = excitation_from(m["excitation"], base, geometry)
     dt = number(m["dt"], "dt", positive=True)
     span = excitation.t_end - excitation.t_start
     if dt > span:
         raise CaseError(f"dt: {dt!r} s is larger than the excitation's duration {span!r} s")
-    return Case(geometry=geometry_from(m["prototype"]), excitation=excitation, dt=dt,
+    return Case(geometry=geometry, excitation=excitation, dt=dt,
                 model=choice(m["model"], "model", MODELS),
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
-                normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"])
+                normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
+                parameters_hash=parameters_hash(mapping))
 
 
 def load_case(path) -> Case:

@@ -16,18 +16,29 @@ from .case import CaseError, load_case
 from .newton import ConvergenceError
 
 
-def write_netcdf(ds, path) -> None:
-    """Write a dataset atomically: a temporary file in the same folder, then a rename."""
+def write_atomic(path, write) -> None:
+    """Call write(temporary path) in the target's folder, then rename onto ``path``: readers and
+    interrupted runs never see a half-written file."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine="netcdf4")
+        write(tmp)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def write_netcdf(ds, path) -> None:
+    """Write a dataset atomically (netCDF4 format)."""
+    write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
+
+
+def write_text(text, path) -> None:
+    """Write a text file atomically."""
+    write_atomic(path, lambda tmp: Path(tmp).write_text(text))
 
 
 def _summary(ds) -> str:

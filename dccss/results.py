@@ -12,6 +12,7 @@ import xarray as xr
 
 from ._version import __version__
 from .constraints import Q_NAMES, Compliant
+from .geometry import Geometry
 from .kinematics import CORNERS, all_corners, clearance, contact_angle, interpenetration
 
 DOI = "10.3390/buildings11020050"
@@ -20,6 +21,8 @@ REFERENCE = (
     f"Geometrical Compatibility and Kinematics. Buildings 2021, 11, 50. https://doi.org/{DOI}"
 )
 MODEL_TITLES = {"compliant": "Compliant Sliding", "stick_slip": "Stick-Slip"}
+GEOMETRY_KEYS = ("R1", "R3", "alpha1", "alpha3", "h2", "alpha21", "alpha23", "hr1", "hr3", "hmin1",
+                 "hmin3", "tr1", "tr3")
 _COORD_LONG = {
     "Rx1": "abscissa of the lower plate RB1", "Ry1": "ordinate of the lower plate RB1",
     "theta1": "rotation of the lower plate RB1", "Rx2": "abscissa of the pad RB2 centroid",
@@ -33,7 +36,7 @@ def _var(dims, data, units, long_name, **attrs):
     return xr.Variable(dims, data, {"units": units, "long_name": long_name, **attrs})
 
 
-def _coordinates(q, dims, suffix="", when=""):
+def coordinates(q, dims, suffix="", when=""):
     out = {}
     for k, name in enumerate(Q_NAMES):
         angle = name.startswith("theta")
@@ -53,6 +56,12 @@ def geometry_attrs(geometry) -> dict:
     return attrs
 
 
+def geometry_from_attrs(attrs) -> Geometry:
+    """Rebuild the Geometry recorded in a dataset's global attributes."""
+    return Geometry.from_degrees(**{name: attrs[f"{name}_{'deg' if name.startswith('alpha') else 'm'}"]
+                                    for name in GEOMETRY_KEYS})
+
+
 def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt, normals,
                     tol, attrs=None) -> xr.Dataset:
     """Dataset of one case from the arrays of ``dccss.models`` (time first, no batch dims)."""
@@ -62,7 +71,7 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
     data = {
         "Xg": _var(t, Xg, "m", "imposed ground displacement X_g"),
         "Xg_dot": _var(t, excitation.velocity(times), "m s-1", "imposed ground velocity dX_g/dt"),
-        **_coordinates(q, t),
+        **coordinates(q, t),
         "rise": _var(t, q[:, 7] - geometry.Ry3_compatible(0.0), "m",
                      "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
     }
@@ -92,7 +101,7 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
                                            f"contact angle alpha of {c.name}2 at the previous contact point")
     else:
         qs = history["q_stick"]
-        data.update(_coordinates(qs, t, "_stick", " at the end of the sticking phase"))
+        data.update(coordinates(qs, t, "_stick", " at the end of the sticking phase"))
         Is = interpenetration(qs, geometry)
         for i, c in enumerate(CORNERS):
             data[f"I_{c}_stick"] = _var(t, Is[:, i], "m",

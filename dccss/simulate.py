@@ -11,7 +11,7 @@ from .constraints import Compliant
 from .excitation import step_times
 from .kinematics import CORNERS, all_corners, interpenetration
 from .newton import NewtonOptions
-from .results import REFERENCE, _var, geometry_attrs, history_dataset
+from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
@@ -58,8 +58,9 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
     data = {f"I_{c}": _var(d, I[:, i], "m", f"interpenetration at corner {c}2 after the first step")
             for i, c in enumerate(CORNERS)}
     data["det_Cq"] = _var(d, cset.determinant(q), "m", "determinant |C_q| (Eq. 29) of the first step")
-    data["theta2"] = _var(d, np.degrees(q[:, 5]), "degree", "pad rotation after the first step")
     data["newton_iterations"] = _var(d, h["newton_iterations"][1], "1", "Newton-Raphson iterations")
+    data.update(coordinates(q, d, "", " after the first step"))
+    data.update(coordinates(h["q"][0], d, "_t0", " in the initial compatible configuration"))
     ds = xr.Dataset(data, coords={"theta2_0": _var(d, np.degrees(theta2_0), "degree",
                                                    "initial pad rotation theta2(t0)")})
     ds.attrs = {"Conventions": "CF-1.11",

@@ -1,0 +1,20 @@
+"""Snakemake adapter: compute every stated number from the results and write the reports."""
+
+import contextlib
+
+import xarray as xr
+
+from dccss import validation
+from dccss.cli import write_text
+
+keys = snakemake.params.results
+with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+    results = validation.Results(
+        cases={(v, p, m, float(dt)): xr.load_dataset(f) for (v, p, m, dt), f in zip(keys["cases"], snakemake.input.cases)},
+        breakaway={(v, p, float(dx)): xr.load_dataset(f) for (v, p, dx), f in zip(keys["breakaway"], snakemake.input.breakaway)},
+    )
+    rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
+                               snakemake.params.case_variants, snakemake.params.breakaway_variants)
+    write_text(validation.to_json(rows), snakemake.output.json)
+    write_text(validation.markdown(rows, snakemake.params.case_variants, snakemake.params.breakaway_variants),
+               snakemake.output.md)
