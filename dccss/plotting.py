@@ -63,9 +63,10 @@ class FigureSpec:
 def _figure(size, nrows=1, ncols=1, **kwargs):
     """A constrained-layout figure of fixed size with a bottom strip for the caption."""
     fig = Figure(figsize=size, layout="constrained")
-    fig.get_layout_engine().set(rect=(0, CAPTION_INCHES / size[1], 1, 1 - CAPTION_INCHES / size[1]))
-    axes = fig.subplots(nrows, ncols, squeeze=False, **kwargs)
-    return fig, axes
+    fig.get_layout_engine().set(rect=(0, CAPTION_INCHES / size[1], 1, 1 - CAPTION_INCHES / size[1]), w_pad=0.08)
+    if nrows is None:
+        return fig
+    return fig, fig.subplots(nrows, ncols, squeeze=False, **kwargs)
 
 
 def _finish(fig, fig_id, caption):
@@ -81,6 +82,13 @@ def _length_unit(*values):
     return (1e6, "µm") if peak < 1e-3 else (1e3, "mm")
 
 
+def _headroom(*axes, frac=0.3):
+    """Extend the y range upwards to leave room for a legend inside the axes."""
+    for ax in axes:
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, hi + frac * (hi - lo))
+
+
 def _legend(ax, *axes, **kwargs):
     """One legend for an axes and its twins."""
     handles = [h for a in (ax, *axes) for h in a.get_legend_handles_labels()[0]]
@@ -94,10 +102,12 @@ def _twin(ax, colour, label):
     return tw
 
 
-def _corners(ax, t, ds, which, factor, unit):
+def _corners(ax, t, ds, which, factor, unit, what="interpenetration"):
     for c in which:
         ax.plot(t, factor * ds[f"I_{c}"].values, label=I_LABEL[c], **CORNER_STYLE[c])
-    ax.set_ylabel(f"interpenetration ({unit})")
+    ax.set_ylabel(f"{what} ({unit})")
+    _headroom(ax)
+    ax.legend(fontsize=8, ncols=len(which), loc="upper right")
 
 
 def _case_label(key):
@@ -184,7 +194,7 @@ def _corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
                   color="crimson" if loaded else "k", pad=2)
     for side in ins.spines.values():
         side.set(color="crimson" if loaded else "0.3", lw=1.6 if loaded else 0.8)
-    ax.indicate_inset_zoom(ins, edgecolor="0.4", alpha=0.8)
+    ax.indicate_inset_zoom(ins, edgecolor="0.5", alpha=0.5, lw=0.6)
 
 
 # --- figures -------------------------------------------------------------------------------------
@@ -207,7 +217,7 @@ def _fig07(datasets, caption):
 
 
 def _fig08(datasets, caption):
-    fig, axes = _figure((13, 8.5), 1, 2)
+    fig, axes = _figure((13, 7.6), 1, 2)
     places = {"A": [0.01, 0.01, 0.40, 0.27], "B": [0.59, 0.01, 0.40, 0.27],
               "C": [0.01, 0.70, 0.40, 0.27], "D": [0.59, 0.70, 0.40, 0.27]}
     for k, ((proto, dX), th0) in enumerate(zip(FIGURES["fig08"].keys, (-6.0, -8.8))):
@@ -225,7 +235,7 @@ def _fig08(datasets, caption):
             _corner_inset(ax, g, q1, shapes, c, values[c], places[c], c in loaded)
         ax.set_title(f"({'ab'[k]}) {proto}, $\\theta^2(t_0)$ = {float(ds['theta2_0']):.1f}°, "
                      f"ΔX$_g(t_1)$ = {100 * dX:g} cm, $\\theta^2(t_1)$ = {q1['theta2']:.2f}°", loc="left")
-        ax.legend(fontsize=8, loc="center left")
+        ax.legend(fontsize=8, loc="upper center")
     return _finish(fig, "fig08", caption)
 
 
@@ -236,10 +246,7 @@ def _fig09(datasets, caption):
         t = ds["time"].values
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
         for row, pair in enumerate(("AD", "BC")):
-            ax = axes[row, k]
-            _corners(ax, t, ds, pair, factor, unit)
-            ax.legend(fontsize=8, loc="upper right")
-            ax.set_title(f"diagonal ${pair[0]}^2{pair[1]}^2$", fontsize=9, loc="right")
+            _corners(axes[row, k], t, ds, pair, factor, unit, f"diagonal ${pair[0]}^2{pair[1]}^2$: interpenetration")
         axes[0, k].set_title(f"({'abcd'[k]}) {_case_label(key)}", loc="left")
         axes[1, k].set_xlabel("t (s)")
     return _finish(fig, "fig09", caption)
@@ -256,11 +263,25 @@ def _fig10(datasets, caption):
                     label=f"{I_LABEL[a]} − {I_LABEL[b]}")
             ax.axhline(0, color="0.6", lw=0.6)
             ax.set_ylabel(f"{I_LABEL[a]} − {I_LABEL[b]} (µm)")
-            ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 3), useMathText=True)
+            ax.ticklabel_format(axis="y", style="plain", useOffset=False)
             ax.legend(fontsize=8, loc="upper right")
+            _cyclic_inset(ax, t, 1e6 * (ds[f"I_{a}"] - ds[f"I_{b}"]).values, CORNER_STYLE[a]["color"])
         axes[0, k].set_title(f"({'ab'[k]}) {_case_label(key)}", loc="left")
         axes[1, k].set_xlabel("t (s)")
     return _finish(fig, "fig10", caption)
+
+
+def _cyclic_inset(ax, t, values, colour):
+    """Inset without the first two steps when their transient dwarfs the cyclic trend."""
+    rest = np.abs(values[2:]).max()
+    if np.abs(values[:2]).max() < 2 * rest:
+        return
+    ins = ax.inset_axes([0.14, 0.06, 0.84, 0.42])
+    ins.plot(t[2:], values[2:], color=colour, lw=1.0)
+    ins.axhline(0, color="0.6", lw=0.6)
+    ins.ticklabel_format(axis="y", style="plain", useOffset=False)
+    ins.tick_params(labelsize=7)
+    ins.set_title(f"from t = {t[2]:g} s (without the first-step transient)", fontsize=8, pad=2)
 
 
 def _overview(fig_id, datasets, caption):
@@ -270,29 +291,34 @@ def _overview(fig_id, datasets, caption):
     g = geometry_from_attrs(ds.attrs)
     shapes = _shapes(g)
     t = ds["time"].values
-    fig, axes = _figure((13, 9.5), 2, 2, height_ratios=(1, 1.15))
+    fig, axes = _figure((13, 8.6), 2, 2, height_ratios=(1, 0.95))
     ax = axes[0, 0]
     ax.plot(t, 100 * ds["Xg"].values, color="k", lw=1.6, label="$X_g$")
     ax.set_ylabel("$X_g$ (cm)")
     tw = _twin(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
     tw.plot(t, 100 * ds["Xg_dot"].values, color="tab:purple", ls="--", lw=1.2, label=r"$\dot X_g$")
-    _legend(ax, tw, loc="lower left")
+    _headroom(ax, tw)
+    _legend(ax, tw, loc="upper center", ncols=2)
     ax.set_title(f"(a) imposed ground motion, {_case_label(key)}", loc="left")
     ax = axes[0, 1]
     ax.plot(t, ds["theta2"].values, color="tab:blue", lw=1.6, label=r"$\theta^2$")
     ax.set_ylabel(r"$\theta^2$ (°)", color="tab:blue")
     tw = _twin(ax, "tab:brown", r"$R_y^3$ rise above rest (cm)")
     tw.plot(t, 100 * ds["rise"].values, color="tab:brown", ls="--", lw=1.4, label=r"$R_y^3$ rise")
-    _legend(ax, tw, loc="lower left")
+    _headroom(ax, tw)
+    _legend(ax, tw, loc="upper center", ncols=2)
     ax.set_title("(b) pad rotation and upper-plate rise", loc="left")
     for ax in axes[0]:
         ax.set_xlabel("t (s)")
+    points = []
     for k, (n, name) in enumerate(((0, "initial"), (-1, "final"))):
         ax, q = axes[1, k], _q(ds.isel(time=n))
-        _frame(ax, _device(ax, g, q, shapes, corners=True))
+        points.append(_device(ax, g, q, shapes, corners=True))
         ax.set_title(f"({'cd'[k]}) {name} configuration, t = {t[n]:.2f} s: $X_g$ = {100 * q['Rx1']:.1f} cm, "
                      f"$\\theta^2$ = {q['theta2']:.2f}°, rise = {100 * float(ds['rise'][n]):.2f} cm",
                      loc="left", fontsize=10)
+    for ax in axes[1]:  # same limits: both drawings at the same scale
+        _frame(ax, np.vstack(points))
     return _finish(fig, fig_id, caption)
 
 
@@ -301,10 +327,10 @@ def _fig17(datasets, caption):
     for k, key in enumerate(FIGURES["fig17"].keys):
         ds, ax = datasets[key], axes[k // 2, k % 2]
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
-        _corners(ax, ds["time"].values, ds, CORNERS, factor, unit)
+        _corners(ax, ds["time"].values, ds, CORNERS, factor, unit, "interpenetration (< 0: gap)")
         ax.axhline(0, color="0.6", lw=0.6)
-        ax.legend(fontsize=8, ncols=4, loc="upper right")
         ax.set_title(f"({'abcd'[k]}) {_case_label(key)}", loc="left")
+    for ax in axes[1]:
         ax.set_xlabel("t (s)")
     return _finish(fig, "fig17", caption)
 

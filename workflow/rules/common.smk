@@ -73,8 +73,9 @@ def breakaway_params(wildcards):
 
 
 def all_targets():
-    targets = all_cases() + all_breakaway() + ["figures/validation.md", "results/validation.ok"]
-    return targets + figure_targets()
+    """Every result; for the paper study (a `figures:` section) also its figures and checks."""
+    paper = ["figures/validation.md", "results/validation.ok"] if "figures" in config else []
+    return all_cases() + all_breakaway() + paper + figure_targets()
 
 
 # --- figures ---

@@ -9,9 +9,11 @@ from dccss.cli import write_text
 
 keys = snakemake.params.results
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+    cases = zip(keys["cases"], snakemake.input.cases)
+    sweeps = zip(keys["breakaway"], snakemake.input.breakaway)
     results = validation.Results(
-        cases={(v, p, m, float(dt)): xr.load_dataset(f) for (v, p, m, dt), f in zip(keys["cases"], snakemake.input.cases)},
-        breakaway={(v, p, float(dx)): xr.load_dataset(f) for (v, p, dx), f in zip(keys["breakaway"], snakemake.input.breakaway)},
+        cases={(v, p, m, float(dt)): xr.load_dataset(f) for (v, p, m, dt), f in cases},
+        breakaway={(v, p, float(dx)): xr.load_dataset(f) for (v, p, dx), f in sweeps},
     )
     rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
                                snakemake.params.case_variants, snakemake.params.breakaway_variants)
