@@ -16,14 +16,21 @@ Typical use::
 Modules: ``geometry`` (Table 1 parameters, derived lengths), ``kinematics`` (bodies, corners,
 contact points), ``constraints`` (the constraint sets and their Jacobians), ``newton`` (the
 solver), ``models`` (time steppers), ``excitation`` (X_g(t)), ``results`` (datasets),
-``simulate`` (one case in, one dataset out), ``case`` and ``cli`` (case files, ``dccss run``).
+``simulation`` (one case in, one dataset out), ``case`` and ``cli`` (case files, ``dccss run``).
 """
 
-from ._version import __version__
-from .excitation import Sine, Table
-from .geometry import Geometry
-from .newton import ConvergenceError, NewtonOptions, SingularJacobianError
-from .simulate import breakaway, simulate
+import importlib
 
-__all__ = ["__version__", "Geometry", "Sine", "Table", "simulate", "breakaway", "NewtonOptions",
-           "ConvergenceError", "SingularJacobianError"]
+from ._version import __version__
+
+# the public names, imported on first use so that e.g. `dccss.plotting` loads no solver code
+_LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "geometry", "NewtonOptions": "newton",
+         "ConvergenceError": "newton", "SingularJacobianError": "newton", "simulate": "simulation",
+         "breakaway": "simulation"}
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module 'dccss' has no attribute {name!r}")

@@ -33,7 +33,7 @@ from .kinematics import NORMALS
 from .models import MODELS
 from .newton import NewtonOptions
 from .prototypes import TABLE1
-from .simulate import simulate
+from .simulation import simulate
 
 REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None}

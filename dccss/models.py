@@ -112,17 +112,19 @@ def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.N
     fixed = {d: diagonal(geometry, d == "BC") for d in ("AD", "BC")}
     q[0] = q0
     for n in range(1, T):
-        down = np.asarray(Xg[n]) - np.asarray(Xg[n - 1]) < 0
+        down = Xg[n] < Xg[n - 1]
         bc[n] = down
-        corners = (fixed["BC"] if down else fixed["AD"]) if not shape else diagonal(geometry, bc[n])
+        corners = (fixed["BC"] if down else fixed["AD"]) if not shape else diagonal(geometry, down)
         F = frames(q[n - 1])
         stick = Sticking(corners, Xg[n], Rx3, [local(F, c) for c in corners])
         # predictors: the previous step's sticking and slipping increments, if on the same diagonal
         same = (bc[n] == bc[n - 1])[..., None] if n > 1 else False
-        guess = np.where(same, q[n - 1] + q_stick[n - 1] - q[n - 2], q[n - 1])
+        guess = np.where(same, q[n - 1] + q_stick[n - 1] - q[n - 2], q[n - 1]) if shape else (
+            q[n - 1] + q_stick[n - 1] - q[n - 2] if same else q[n - 1])
         r1 = newton.solve(stick, guess, options, _context(n, times, stick.phase))
         slip = slip_set(geometry, corners, r1.q, normals)
-        guess = np.where(same, r1.q + q[n - 1] - q_stick[n - 1], r1.q)
+        guess = np.where(same, r1.q + q[n - 1] - q_stick[n - 1], r1.q) if shape else (
+            r1.q + q[n - 1] - q_stick[n - 1] if same else r1.q)
         r2 = newton.solve(slip, guess, options, _context(n, times, slip.phase))
         q_stick[n], q[n] = r1.q, r2.q
         its["stick"][n], its["slip"][n] = r1.iterations, r2.iterations

@@ -4,9 +4,9 @@ The prescribed unit rows of a set are linear, so one Newton step solves them exa
 solver applies it first and then iterates C_q[contact, free] dq = -g on the contact rows. This
 is block elimination of Eq. 13, not a different method: the iterates are Newton's.
 
-One case (q0 of shape (9,)) runs on Python scalars with LAPACK's gesv, avoiding numpy's
-per-call overhead on 4 x 4 systems; a batch (q0 of shape (..., 9)) stacks the Jacobians and
-solves them with ``numpy.linalg.solve``. Both evaluate the same constraint rows.
+One case (q0 of shape (9,)) runs on Python scalars, avoiding numpy's per-call overhead on the
+small arrays of the rows; a batch (q0 of shape (..., 9)) stacks the Jacobians. Both evaluate the
+same constraint rows and solve with ``numpy.linalg.solve``.
 """
 
 from __future__ import annotations
@@ -14,7 +14,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import lapack
 
 from .constraints import Q_NAMES
 from .kinematics import frames
@@ -74,12 +73,13 @@ def _solve_one(cset, q, options, context):
         rows = cset.rows(frames(x))
         g = [gi for gi, _ in rows]
         if all(abs(gi) <= tol for gi in g):  # NaN fails
-            return NewtonResult(np.array(x), np.int32(it), float(np.max(np.abs(g))))
+            return NewtonResult(np.array(x), it, max(abs(gi) for gi in g))
         if it == options.max_iter:
             break
         J = np.array([[entries.get(c, 0.0) for c in free] for _, entries in rows])
-        _, _, dq, info = lapack.dgesv(J, np.array(g))
-        if info > 0:
+        try:
+            dq = np.linalg.solve(J, g)
+        except np.linalg.LinAlgError:
             _singular(cset, J, context, ())
         for c, d in zip(free, dq.tolist()):
             x[c] -= d

@@ -13,15 +13,17 @@ Typical use::
 from __future__ import annotations
 
 import os
-import tempfile
+import secrets
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
+from matplotlib.ticker import MaxNLocator
 
 from .constraints import Q_NAMES
 from .kinematics import CORNERS
@@ -62,7 +64,8 @@ class FigureSpec:
 # --- helpers --------------------------------------------------------------------------------
 def _figure(size, nrows=1, ncols=1, **kwargs):
     """A constrained-layout figure of fixed size with a bottom strip for the caption."""
-    fig = Figure(figsize=size, layout="constrained")
+    fig = Figure(figsize=size, dpi=DPI, layout="constrained")
+    FigureCanvasAgg(fig)  # one Agg renderer for the layout pass and the PNG: text metrics computed once
     fig.get_layout_engine().set(rect=(0, CAPTION_INCHES / size[1], 1, 1 - CAPTION_INCHES / size[1]), w_pad=0.08)
     if nrows is None:
         return fig
@@ -73,6 +76,8 @@ def _finish(fig, fig_id, caption):
     fig.suptitle(f"Figure {int(fig_id[3:])}. {FIGURES[fig_id].title}", fontsize=12)
     fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
              fontsize=9, style="italic", color="0.25")
+    fig.draw_without_rendering()  # constrained layout once, then frozen: each save draws only once
+    fig.set_layout_engine(None)
     return fig
 
 
@@ -102,9 +107,10 @@ def _twin(ax, colour, label):
     return tw
 
 
-def _corners(ax, t, ds, which, factor, unit, what="interpenetration"):
+def _corners(ax, t, ds, which, factor, unit, what="interpenetration, < 0: gap"):
     for c in which:
         ax.plot(t, factor * ds[f"I_{c}"].values, label=I_LABEL[c], **CORNER_STYLE[c])
+    ax.axhline(0, color="0.6", lw=0.6)
     ax.set_ylabel(f"{what} ({unit})")
     _headroom(ax)
     ax.legend(fontsize=8, ncols=len(which), loc="upper right")
@@ -133,7 +139,7 @@ def _body(q, i):
 
 
 def _shapes(g):
-    """Global-frame-free outlines of RB1, RB2, RB3 (fine arcs: interpenetrations are µm-mm)."""
+    """Local outlines of RB1, RB2, RB3 with fine arcs (interpenetrations are µm to mm)."""
     return {1: g.plate_outline(1, n_arc=1441), 2: g.pad_outline(n_arc=241), 3: g.plate_outline(3, n_arc=1441)}
 
 
@@ -143,10 +149,10 @@ def _device(ax, g, q, shapes, *, colour=None, ls="-", label=None, fill=True, cor
     for i in (1, 3, 2):
         xy = 100 * _pose(shapes[i], *_body(q, i))
         if fill:
-            ax.add_patch(Polygon(xy, closed=True, fc=PAD_COLOUR if i == 2 else PLATE_COLOUR, ec="k", lw=lw,
+            ax.add_artist(Polygon(xy, closed=True, fc=PAD_COLOUR if i == 2 else PLATE_COLOUR, ec="k", lw=lw,
                                  alpha=0.85 if i == 2 else 1.0, label=label if i == 2 else None))
         else:
-            ax.add_patch(Polygon(xy, closed=True, fill=False, ec=colour, ls=ls, lw=lw * (1.8 if i == 2 else 1),
+            ax.add_artist(Polygon(xy, closed=True, fill=False, ec=colour, ls=ls, lw=lw * (1.8 if i == 2 else 1),
                                  label=label if i == 2 else None))
         drawn.append(xy)
     if corners:
@@ -180,7 +186,7 @@ def _corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
     half = max(2.5 * abs(value), 0.5e-3)
     ins = ax.inset_axes(bounds)
     for j in (1, 3, 2):
-        ins.add_patch(Polygon(100 * _pose(shapes[j], *_body(q, j)), closed=True, ec="k", lw=0.8,
+        ins.add_artist(Polygon(100 * _pose(shapes[j], *_body(q, j)), closed=True, ec="k", lw=0.8,
                               fc=PAD_COLOUR if j == 2 else PLATE_COLOUR, alpha=0.7 if j == 2 else 1.0))
     ins.plot(100 * np.array([point[0], foot[0]]), 100 * np.array([point[1], foot[1]]), color="crimson", lw=1.5)
     ins.plot(*(100 * point), "o", color="crimson", ms=3)
@@ -246,7 +252,8 @@ def _fig09(datasets, caption):
         t = ds["time"].values
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
         for row, pair in enumerate(("AD", "BC")):
-            _corners(axes[row, k], t, ds, pair, factor, unit, f"diagonal ${pair[0]}^2{pair[1]}^2$: interpenetration")
+            _corners(axes[row, k], t, ds, pair, factor, unit,
+                     f"diagonal ${pair[0]}^2{pair[1]}^2$\ninterpenetration, < 0: gap")
         axes[0, k].set_title(f"({'abcd'[k]}) {_case_label(key)}", loc="left")
         axes[1, k].set_xlabel("t (s)")
     return _finish(fig, "fig09", caption)
@@ -258,14 +265,14 @@ def _fig10(datasets, caption):
         ds = datasets[key]
         t = ds["time"].values
         for row, (a, b) in enumerate((("A", "B"), ("D", "C"))):
-            ax = axes[row, k]
-            ax.plot(t, 1e6 * (ds[f"I_{a}"] - ds[f"I_{b}"]).values, color=CORNER_STYLE[a]["color"], lw=1.4,
-                    label=f"{I_LABEL[a]} − {I_LABEL[b]}")
+            ax, diff = axes[row, k], 1e6 * (ds[f"I_{a}"] - ds[f"I_{b}"]).values
+            ax.plot(t, diff, color=CORNER_STYLE[a]["color"], lw=1.4, label=f"{I_LABEL[a]} − {I_LABEL[b]}")
             ax.axhline(0, color="0.6", lw=0.6)
             ax.set_ylabel(f"{I_LABEL[a]} − {I_LABEL[b]} (µm)")
             ax.ticklabel_format(axis="y", style="plain", useOffset=False)
+            _headroom(ax)
             ax.legend(fontsize=8, loc="upper right")
-            _cyclic_inset(ax, t, 1e6 * (ds[f"I_{a}"] - ds[f"I_{b}"]).values, CORNER_STYLE[a]["color"])
+            _cyclic_inset(ax, t, diff, CORNER_STYLE[a]["color"])
         axes[0, k].set_title(f"({'ab'[k]}) {_case_label(key)}", loc="left")
         axes[1, k].set_xlabel("t (s)")
     return _finish(fig, "fig10", caption)
@@ -273,15 +280,14 @@ def _fig10(datasets, caption):
 
 def _cyclic_inset(ax, t, values, colour):
     """Inset without the first two steps when their transient dwarfs the cyclic trend."""
-    rest = np.abs(values[2:]).max()
-    if np.abs(values[:2]).max() < 2 * rest:
+    if values.size < 4 or np.nanmax(np.abs(values[:2])) < 5 * np.nanmax(np.abs(values[2:])):
         return
-    ins = ax.inset_axes([0.14, 0.06, 0.84, 0.42])
+    ins = ax.inset_axes([0.2, 0.06, 0.78, 0.42])
     ins.plot(t[2:], values[2:], color=colour, lw=1.0)
     ins.axhline(0, color="0.6", lw=0.6)
     ins.ticklabel_format(axis="y", style="plain", useOffset=False)
     ins.tick_params(labelsize=7)
-    ins.set_title(f"from t = {t[2]:g} s (without the first-step transient)", fontsize=8, pad=2)
+    ins.set_title(f"from t = {t[2]:g} s, without the first-step transient (µm)", fontsize=8, pad=2)
 
 
 def _overview(fig_id, datasets, caption):
@@ -327,8 +333,7 @@ def _fig17(datasets, caption):
     for k, key in enumerate(FIGURES["fig17"].keys):
         ds, ax = datasets[key], axes[k // 2, k % 2]
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
-        _corners(ax, ds["time"].values, ds, CORNERS, factor, unit, "interpenetration (< 0: gap)")
-        ax.axhline(0, color="0.6", lw=0.6)
+        _corners(ax, ds["time"].values, ds, CORNERS, factor, unit)
         ax.set_title(f"({'abcd'[k]}) {_case_label(key)}", loc="left")
     for ax in axes[1]:
         ax.set_xlabel("t (s)")
@@ -344,52 +349,54 @@ def _step_path(t, end, stick):
     return tt, vv
 
 
-def _sticking(fig_id, datasets, caption):
+def _sticking(fig_id, t_zoom, datasets, caption):
     """Figs. 18, 19: theta2 and R_y^3 at the end of each step and of each sticking phase."""
     key = FIGURES[fig_id].keys[0]
     ds = datasets[key]
     t = ds["time"].values
+    mid = 0.5 * (t[1:] + t[:-1])
     rest = ds["Ry3"].values - ds["rise"].values
     series = {"theta2": (ds["theta2"].values, ds["theta2_stick"].values, r"$\theta^2$ (°)"),
               "rise": (100 * ds["rise"].values, 100 * (ds["Ry3_stick"].values - rest), r"$R_y^3$ rise (cm)")}
-    dth = ds["theta2_stick"].values[1:] - ds["theta2"].values[:-1]
-    n_star = 1 + int(np.nanargmax(np.abs(dth)))
-    half = 6.5 * (t[1] - t[0])
-    fig = Figure(figsize=(13, 10), layout="constrained")
-    fig.get_layout_engine().set(rect=(0, CAPTION_INCHES / 10, 1, 1 - CAPTION_INCHES / 10))
+    n = max(1, int(np.abs(t - t_zoom).argmin()))
+    half = 6.5 * (t[n] - t[n - 1])
+    fig = _figure((13, 10), None)
     axd = fig.subplot_mosaic([["a", "b"], ["c", "d"], ["e", "e"]], width_ratios=(2.6, 1))
-    for (main, zoom), (name, (end, stick, label)) in zip((("a", "b"), ("c", "d")), series.items()):
+    for (main, zoom), (end, stick, label) in zip((("a", "b"), ("c", "d")), series.values()):
         tt, vv = _step_path(t, end, stick)
         for ax in (axd[main], axd[zoom]):
-            ax.plot(tt, vv, color="tab:red", lw=0.7, label="step path through the end of sticking (at mid-step)")
-            ax.plot(t, end, color="k", lw=1.5, label="end of step (end of slipping)")
+            ax.plot(tt, vv, color="tab:red", lw=0.6, alpha=0.6, label="path through the end of sticking")
+            ax.plot(t, end, color="k", lw=1.5, label="end of step")
             ax.set_ylabel(label)
             ax.set_xlabel("t (s)")
-        axd[zoom].plot(tt[1::2], vv[1::2], "o", color="tab:red", ms=3)
+        axd[zoom].plot(mid, stick[1:], "o", color="tab:red", ms=3)
         axd[zoom].plot(t, end, "s", color="k", ms=3)
-        sel = (tt > t[n_star] - half) & (tt < t[n_star] + half)
-        axd[zoom].set_xlim(t[n_star] - half, t[n_star] + half)
+        sel = (tt > t[n] - half) & (tt < t[n] + half)
         lo, hi = np.nanmin(vv[sel]), np.nanmax(vv[sel])
+        axd[zoom].set_xlim(t[n] - half, t[n] + half)
         axd[zoom].set_ylim(lo - 0.08 * (hi - lo), hi + 0.08 * (hi - lo))
-        axd[main].axvspan(t[n_star] - half, t[n_star] + half, color="gold", alpha=0.35, lw=0)
-        axd[main].legend(fontsize=8, loc="lower left")
+        axd[zoom].xaxis.set_major_locator(MaxNLocator(4))
+        axd[main].axvspan(t[n] - half, t[n] + half, color="gold", alpha=0.5, lw=0)
+        axd[main].legend(fontsize=8, loc="lower right", bbox_to_anchor=(1, 1), ncols=2, borderaxespad=0.2)
     axd["a"].set_title(f"(a) pad rotation, {_case_label(key)}", loc="left")
-    axd["b"].set_title(f"(b) zoom of (a) around t = {t[n_star]:.3f} s", loc="left")
     axd["c"].set_title("(c) rise of the upper plate RB3", loc="left")
-    axd["d"].set_title(f"(d) zoom of (c) around t = {t[n_star]:.3f} s", loc="left")
+    for z, m in (("b", "a"), ("d", "c")):
+        axd[z].set_title(f"({z}) zoom of ({m}), step ending at t = {t[n]:.3g} s", loc="left", fontsize=10)
     ax = axd["e"]
-    ax.plot(t[1:], dth, color="tab:red", lw=1.2, label=r"sticking rotation $\theta^2_{stick}(t_n) - \theta^2(t_{n-1})$")
+    stick_rotation = ds["theta2_stick"].values[1:] - ds["theta2"].values[:-1]
+    ax.plot(mid, stick_rotation, color="tab:red", lw=1.2, label=r"$\theta^2_{stick}(t_n) - \theta^2(t_{n-1})$")
     ax.set_ylabel(r"$\Delta\theta^2$ in sticking (°)", color="tab:red")
     ax.set_xlabel("t (s)")
     tw = _twin(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
     tw.plot(t, 100 * ds["Xg_dot"].values, color="tab:purple", ls="--", lw=1.0, label=r"$\dot X_g$")
-    _legend(ax, tw, loc="lower left")
-    ax.set_title("(e) sticking rotation of the pad in each step and ground velocity", loc="left")
+    _legend(ax, tw, loc="lower right", bbox_to_anchor=(1, 1), ncols=2, borderaxespad=0.2)
+    ax.set_title(f"(e) sticking rotation of the pad (max |Δθ²| = {np.nanmax(np.abs(stick_rotation)):.2f}°) "
+                 "and ground velocity", loc="left")
     return _finish(fig, fig_id, caption)
 
 
 def _fig20(datasets, caption):
-    fig, axes = _figure((13, 6.5), 1, 2)
+    fig, axes = _figure((13, 5.9), 1, 2)
     styles = (("0.45", "--"), ("tab:red", "-"), ("tab:blue", "-."))
     for k, (key, t_target) in enumerate(zip(FIGURES["fig20"].keys, (0.73, 0.94))):
         ds, ax = datasets[key], axes[0, k]
@@ -408,11 +415,14 @@ def _fig20(datasets, caption):
         diagonal = ("$A^2D^2$", "$B^2C^2$")[int(now["sticking_diagonal"])]
         ax.set_title(f"({'ab'[k]}) {_case_label(key)}, step ending at t = {float(now['time']):.3f} s,\n"
                      f"$\\dot X_g$ = {100 * float(now['Xg_dot']):.2f} cm/s, sticking diagonal {diagonal}", loc="left")
-        ax.legend(fontsize=8, loc="upper center", ncols=1)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), handlelength=3.5)
     return _finish(fig, "fig20", caption)
 
 
-_CASES4 = lambda model: tuple((p, model, dt) for p in ("DFP1", "DFP2") for dt in (0.01, 0.001))  # noqa: E731
+def _four(model):
+    """(a, b) DFP1 with dt 0.01, 0.001 s; (c, d) the same for DFP2."""
+    return tuple((proto, model, dt) for proto in ("DFP1", "DFP2") for dt in (0.01, 0.001))
+
 
 FIGURES: dict[str, FigureSpec] = {
     "fig07": FigureSpec("breakaway", tuple((p, dX) for p in ("DFP1", "DFP2") for dX in (0.05, 0.10)), _fig07,
@@ -420,7 +430,7 @@ FIGURES: dict[str, FigureSpec] = {
                         "vs θ²(t₀)"),
     "fig08": FigureSpec("breakaway", (("DFP1", 0.10), ("DFP2", 0.05)), _fig08,
                         "Breakaway (compliant sliding): initial and displaced configurations, corner zooms"),
-    "fig09": FigureSpec("cases", _CASES4("compliant"), _fig09,
+    "fig09": FigureSpec("cases", _four("compliant"), _fig09,
                         "Compliant sliding: interpenetration time histories at the corners of RB2"),
     "fig10": FigureSpec("cases", (("DFP1", "compliant", 0.01), ("DFP1", "compliant", 0.001)), _fig10,
                         "Compliant sliding, DFP1: difference of interpenetration I_A − I_B and I_D − I_C"),
@@ -428,11 +438,11 @@ FIGURES: dict[str, FigureSpec] = {
                         "Compliant sliding, DFP1, Δt = 0.01 s: ground motion, θ², R_y³ and configurations"),
     "fig12": FigureSpec("cases", (("DFP2", "compliant", 0.001),), partial(_overview, "fig12"),
                         "Compliant sliding, DFP2, Δt = 0.001 s: ground motion, θ², R_y³ and configurations"),
-    "fig17": FigureSpec("cases", _CASES4("stick_slip"), _fig17,
+    "fig17": FigureSpec("cases", _four("stick_slip"), _fig17,
                         "Stick-slip: interpenetration time histories at the corners of RB2"),
-    "fig18": FigureSpec("cases", (("DFP1", "stick_slip", 0.001),), partial(_sticking, "fig18"),
+    "fig18": FigureSpec("cases", (("DFP1", "stick_slip", 0.001),), partial(_sticking, "fig18", 0.73),
                         "Stick-slip, DFP1, Δt = 0.001 s: θ² and R_y³ time histories with the sticking oscillation"),
-    "fig19": FigureSpec("cases", (("DFP2", "stick_slip", 0.01),), partial(_sticking, "fig19"),
+    "fig19": FigureSpec("cases", (("DFP2", "stick_slip", 0.01),), partial(_sticking, "fig19", 0.94),
                         "Stick-slip, DFP2, Δt = 0.01 s: θ² and R_y³ time histories with the sticking oscillation"),
     "fig20": FigureSpec("cases", (("DFP1", "stick_slip", 0.001), ("DFP2", "stick_slip", 0.01)), _fig20,
                         "Stick-slip: configurations at the start of a step, end of sticking and end of slipping"),
@@ -460,11 +470,12 @@ def render(fig_id: str, datasets: dict, caption: str) -> Figure:
 
 
 def _atomic(path, write):
+    """Write through ``write(file)`` to a temporary file in the same folder, then rename it."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")  # created honouring umask
     try:
-        with os.fdopen(fd, "wb") as f:
+        with open(tmp, "xb") as f:
             write(f)
         os.replace(tmp, path)
     except BaseException:

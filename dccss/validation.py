@@ -36,7 +36,8 @@ def quantity(kind_set):
 
 @dataclass
 class Results:
-    """Datasets by key: cases[(variant, proto, model, dt)], breakaway[(variant, proto, dXg)]."""
+    """Datasets by key: cases[(variant, proto, model, dt)], breakaway[(variant, proto)] (with a
+    ``dXg`` dimension)."""
 
     cases: dict
     breakaway: dict
@@ -45,7 +46,7 @@ class Results:
         return self.cases[(variant, prototype, model, float(dt))]
 
     def sweep(self, variant, prototype, dXg):
-        return self.breakaway[(variant, prototype, float(dXg))]
+        return self.breakaway[(variant, prototype)].sel(dXg=float(dXg))
 
 
 def _step(ds, t):

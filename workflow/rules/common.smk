@@ -6,16 +6,12 @@ def dt_label(dt):
     return f"{dt:g}"
 
 
-def dx_label(dXg):
-    return f"{100 * dXg:g}cm"
-
-
 def case_path(case_set, proto, model, dt):
     return f"results/cases/{case_set}/{proto}_{model}_dt{dt_label(dt)}.nc"
 
 
-def breakaway_path(proto, normals, dXg):
-    return f"results/breakaway/{proto}_{normals}_dX{dx_label(dXg)}.nc"
+def breakaway_path(proto, normals):
+    return f"results/breakaway/{proto}_{normals}.nc"
 
 
 def all_cases():
@@ -32,12 +28,7 @@ def all_breakaway():
     spec = config.get("breakaway")
     if not spec:
         return []
-    return [
-        breakaway_path(proto, normals, dXg)
-        for proto in config["prototypes"]
-        for normals in spec["normals"]
-        for dXg in spec["dXg"]
-    ]
+    return [breakaway_path(proto, normals) for proto in config["prototypes"] for normals in spec["normals"]]
 
 
 def case_mapping(wildcards):
@@ -66,7 +57,7 @@ def breakaway_params(wildcards):
     return {
         "prototype": config["prototypes"][wildcards.proto],
         "theta2_0": [round(grid["start"] + k * grid["step"], 10) for k in range(n + 1)],
-        "dXg": next(d for d in spec["dXg"] if dx_label(d) == wildcards.dx),
+        "dXg": spec["dXg"],
         "normals": wildcards.normals,
         "newton": config.get("newton", {}),
     }
@@ -79,39 +70,64 @@ def all_targets():
 
 
 # --- figures ---
-def figure_variant(fig, variant):
-    """The case set (time-history figures) or normal convention (breakaway figures) a figure file shows."""
+def figure_group(fig):
+    """Figures are drawn in groups that read the same datasets: breakaway, compliant, stick_slip."""
+    spec = FIGURES[fig]
+    return "breakaway" if spec.kind == "breakaway" else spec.keys[0][1]
+
+
+FIGURE_GROUPS = {}
+for _fig in FIGURES:
+    FIGURE_GROUPS.setdefault(figure_group(_fig), []).append(_fig)
+
+
+def group_kind(group):
+    return "breakaway" if group == "breakaway" else "cases"
+
+
+def group_variant(group, variant):
+    """The case set (time-history figures) or normal convention (breakaway figures) drawn."""
     if variant:
         return variant.lstrip("_")
-    key = "case_set" if FIGURES[fig].kind == "cases" else "breakaway_normals"
-    return config["figures"][key]
+    return config["figures"]["case_set" if group_kind(group) == "cases" else "breakaway_normals"]
 
 
-def figure_inputs(wildcards):
-    spec, variant = FIGURES[wildcards.fig], figure_variant(wildcards.fig, wildcards.variant)
-    if spec.kind == "cases":
-        return [case_path(variant, proto, model, dt) for proto, model, dt in spec.keys]
-    return [breakaway_path(proto, variant, dXg) for proto, dXg in spec.keys]
+def group_variants(group):
+    """'' for the variant that reproduces the paper, '_<other>' for each companion."""
+    main = group_variant(group, "")
+    others = config["case_sets"] if group_kind(group) == "cases" else config["breakaway"]["normals"]
+    return [""] + [f"_{o}" for o in others if o != main]
 
 
-def figure_caption(wildcards):
-    variant = figure_variant(wildcards.fig, wildcards.variant)
-    if FIGURES[wildcards.fig].kind == "cases":
-        spec = config["case_sets"][variant]
-        return f"case set: {variant} ({spec.get('description', '')})"
-    return f"breakaway sweep, {variant} normals"
+def figure_datasets(group, variant):
+    """{figure: [(key, file)]} of the datasets each figure of a group draws (keys as in dccss.plotting)."""
+    v = group_variant(group, variant)
+    path = (lambda key: case_path(v, *key)) if group_kind(group) == "cases" else (
+        lambda key: breakaway_path(key[0], v))
+    return {fig: [(list(key), path(key)) for key in FIGURES[fig].keys] for fig in FIGURE_GROUPS[group]}
+
+
+def figure_inputs(group, variant):
+    return sorted({p for pairs in figure_datasets(group, variant).values() for _, p in pairs})
+
+
+def figure_caption(group, variant):
+    v = group_variant(group, variant)
+    if group_kind(group) == "cases":
+        return f"case set: {v} ({config['case_sets'][v].get('description', '')})"
+    return f"breakaway sweep, {v} normals"
 
 
 def figure_targets():
     if "figures" not in config:
         return []
-    out = []
-    for fig, spec in FIGURES.items():
-        main = figure_variant(fig, "")
-        others = config["case_sets"] if spec.kind == "cases" else config["breakaway"]["normals"]
-        for variant in [""] + [f"_{o}" for o in others if o != main]:
-            out += [f"figures/{fig}{variant}.png", f"figures/{fig}{variant}.pdf"]
-    return out
+    return [
+        f"figures/{fig}{variant}.{ext}"
+        for group, figs in FIGURE_GROUPS.items()
+        for variant in group_variants(group)
+        for fig in figs
+        for ext in ("png", "pdf")
+    ]
 
 
 # --- validation ---
@@ -120,7 +136,7 @@ def validation_inputs(wildcards=None):
 
 
 def result_keys():
-    """(variant, prototype, model, dt) of every case file and (normals, prototype, dXg) of every sweep,
+    """(variant, prototype, model, dt) of every case file and (normals, prototype) of every sweep,
     in the order of validation_inputs."""
     cases = [
         [case_set, proto, model, dt]
@@ -129,6 +145,6 @@ def result_keys():
         for model in config["models"]
         for dt in config["dt"]
     ]
-    spec = config.get("breakaway") or {"normals": [], "dXg": []}
-    sweeps = [[normals, proto, dXg] for proto in config["prototypes"] for normals in spec["normals"] for dXg in spec["dXg"]]
+    spec = config.get("breakaway") or {"normals": []}
+    sweeps = [[normals, proto] for proto in config["prototypes"] for normals in spec["normals"]]
     return {"cases": cases, "breakaway": sweeps}

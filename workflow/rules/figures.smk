@@ -1,24 +1,27 @@
-rule figure:
-    input:
-        figure_inputs,
-    output:
-        png=report(
-            "figures/{fig}{variant}.png",
-            caption="../report/figure.rst",
-            category="Figures",
-            subcategory="{fig}",
-        ),
-        pdf="figures/{fig}{variant}.pdf",
-    params:
-        datasets=lambda w: [list(k) for k in FIGURES[w.fig].keys],
-        title=lambda w: FIGURES[w.fig].title,
-        caption=figure_caption,
-    wildcard_constraints:
-        fig="fig[0-9]{2}",
-        variant="(_[A-Za-z0-9_]+)?",
-    log:
-        "logs/figures/{fig}{variant}.log",
-    conda:
-        "../envs/dccss.yaml"
-    script:
-        "../scripts/figure.py"
+# One job per group of figures that read the same datasets, and per variant ("" or "_<companion>").
+for group, figs in FIGURE_GROUPS.items():
+
+    rule:
+        name:
+            f"figures_{group}"
+        input:
+            lambda w, group=group: figure_inputs(group, w.variant),
+        output:
+            png=[
+                report(f"figures/{fig}{{variant}}.png", caption="../report/figure.rst", category="Figures",
+                       subcategory=fig)
+                for fig in figs
+            ],
+            pdf=[f"figures/{fig}{{variant}}.pdf" for fig in figs],
+        params:
+            datasets=lambda w, group=group: figure_datasets(group, w.variant),
+            titles={fig: FIGURES[fig].title for fig in figs},
+            caption=lambda w, group=group: figure_caption(group, w.variant),
+        wildcard_constraints:
+            variant="(_[A-Za-z0-9_]+)?",
+        log:
+            f"logs/figures/{group}{{variant}}.log",
+        conda:
+            "../envs/dccss.yaml"
+        script:
+            "../scripts/figures.py"

@@ -4,7 +4,6 @@ wildcard_constraints:
     model="compliant|stick_slip",
     normals="signed|unsigned",
     dt="[0-9.e-]+",
-    dx="[0-9.]+cm",
 
 
 rule simulate:
@@ -22,11 +21,11 @@ rule simulate:
 
 rule breakaway:
     output:
-        "results/breakaway/{proto}_{normals}_dX{dx}.nc",
+        "results/breakaway/{proto}_{normals}.nc",
     params:
         sweep=breakaway_params,
     log:
-        "logs/breakaway/{proto}_{normals}_dX{dx}.log",
+        "logs/breakaway/{proto}_{normals}.log",
     conda:
         "../envs/dccss.yaml"
     script:

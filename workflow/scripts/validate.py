@@ -13,7 +13,7 @@ with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contex
     sweeps = zip(keys["breakaway"], snakemake.input.breakaway)
     results = validation.Results(
         cases={(v, p, m, float(dt)): xr.load_dataset(f) for (v, p, m, dt), f in cases},
-        breakaway={(v, p, float(dx)): xr.load_dataset(f) for (v, p, dx), f in sweeps},
+        breakaway={(v, p): xr.load_dataset(f) for (v, p), f in sweeps},
     )
     rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
                                snakemake.params.case_variants, snakemake.params.breakaway_variants)

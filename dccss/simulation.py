@@ -43,29 +43,39 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
 def breakaway(geometry, theta2_0, dXg, *, normals="signed",
               options: NewtonOptions = NewtonOptions(), attrs: dict | None = None) -> xr.Dataset:
     """Fig. 7: one compliant step of size dXg (m) from the compatible configuration at each
-    theta^2(t_0) (rad, 1-D array); interpenetration I_A..I_D after the step and |C_q|."""
+    theta^2(t_0) (rad, 1-D array); interpenetration I_A..I_D after the step, |C_q| and the
+    configurations before and after. A scalar dXg gives dimension ``theta2_0``; a 1-D array of
+    step sizes adds a leading dimension ``dXg`` (all solved as one batch)."""
     theta2_0 = np.atleast_1d(np.asarray(theta2_0, dtype=float))
     if theta2_0.ndim != 1 or theta2_0.size == 0:
         raise ValueError("theta2_0 must be a non-empty 1-D grid of initial pad rotations")
-    Xg = np.array([[0.0], [float(dXg)]]) * np.ones_like(theta2_0)
+    steps = np.asarray(dXg, dtype=float)
+    if steps.ndim > 1 or steps.size == 0 or not np.all(np.isfinite(steps)):
+        raise ValueError(f"dXg must be a finite number or a non-empty 1-D array, got {dXg!r}")
+    sizes = np.atleast_1d(steps)
+    Xg = np.zeros((2, sizes.size, theta2_0.size))
+    Xg[1] = sizes[:, None]
     h = models.compliant(geometry, Xg, theta2_0, normals=normals, options=options)
-    q = h["q"][1]
-    I = interpenetration(q, geometry)
+    q, q0 = h["q"][1], h["q"][0]
     corners = all_corners(geometry)
     cset = Compliant(corners, q[..., 0], h["Rx3"], [h["point"][1][..., i] for i in range(4)],
                      [h["normal"][1][..., i] for i in range(4)])
-    d = ("theta2_0",)
-    data = {f"I_{c}": _var(d, I[:, i], "m", f"interpenetration at corner {c}2 after the first step")
+    I = interpenetration(q, geometry)
+    d = ("dXg", "theta2_0")
+    data = {f"I_{c}": _var(d, I[..., i], "m", f"interpenetration at corner {c}2 after the first step")
             for i, c in enumerate(CORNERS)}
     data["det_Cq"] = _var(d, cset.determinant(q), "m", "determinant |C_q| (Eq. 29) of the first step")
     data["newton_iterations"] = _var(d, h["newton_iterations"][1], "1", "Newton-Raphson iterations")
     data.update(coordinates(q, d, "", " after the first step"))
-    data.update(coordinates(h["q"][0], d, "_t0", " in the initial compatible configuration"))
-    ds = xr.Dataset(data, coords={"theta2_0": _var(d, np.degrees(theta2_0), "degree",
-                                                   "initial pad rotation theta2(t0)")})
+    data.update(coordinates(q0, d, "_t0", " in the initial compatible configuration"))
+    ds = xr.Dataset(data, coords={
+        "theta2_0": _var(("theta2_0",), np.degrees(theta2_0), "degree", "initial pad rotation theta2(t0)"),
+        "dXg": _var(("dXg",), sizes, "m", "imposed ground displacement of the first step")})
     ds.attrs = {"Conventions": "CF-1.11",
                 "title": "DCCSS breakaway: interpenetration at the first compliant sliding step",
                 "source": f"dccss {__version__}", "references": REFERENCE, "model": "compliant",
-                "normals": normals, "dXg_m": float(dXg), "dccss_version": __version__,
-                **geometry_attrs(geometry), **(attrs or {})}
+                "normals": normals, "dccss_version": __version__, **geometry_attrs(geometry), **(attrs or {})}
+    if steps.ndim == 0:
+        ds = ds.isel(dXg=0)
+        ds.attrs["dXg_m"] = float(steps)
     return ds

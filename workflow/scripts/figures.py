@@ -1,0 +1,20 @@
+"""Snakemake adapter: the datasets of a group of figures -> their PNG and PDF files."""
+
+import contextlib
+
+import xarray as xr
+
+from dccss import plotting
+
+with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+    files = {f: xr.load_dataset(f) for f in snakemake.input}
+    figures = snakemake.params.datasets
+    for (fig, pairs), png, pdf in zip(figures.items(), snakemake.output.png, snakemake.output.pdf):
+        datasets = {}
+        for key, path in pairs:
+            ds = files[path]
+            if "dXg" in ds.dims:  # key (prototype, dXg): one step size of a breakaway sweep
+                ds = ds.sel(dXg=key[1]).assign_attrs(dXg_m=key[1])
+            datasets[tuple(key)] = ds
+        plotting.save(plotting.render(fig, datasets, snakemake.params.caption), png, pdf)
+        print(f"{fig}: {png}, {pdf}")
