@@ -297,5 +297,22 @@ def markdown(rows, case_variants, breakaway_variants) -> str:
     return "# Validation against the paper\n\n" + summary + "\n\n" + "\n".join(lines) + "\n"
 
 
+def to_csv(rows, case_variants, breakaway_variants) -> str:
+    """The table of ``markdown`` as CSV (for the Snakemake report)."""
+    import csv
+    import io
+
+    variants = list(dict.fromkeys([*case_variants, *breakaway_variants]))
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(["id", "what", "source", "paper", "unit", "check", *variants, "status", "note"])
+    for r in rows:
+        check = {"within": f"+/- {_fmt(r['tolerance'])}", "greater": "greater", "less": "less"}[r["relation"]]
+        writer.writerow([r["id"], r["description"], r["source"], _fmt(r["paper_value"]), r["unit"], check,
+                         *[_fmt(r["computed"][v]) if v in r["computed"] else "" for v in variants],
+                         ("FAIL " if not r["ok"] else "") + r["status"], r["reason"]])
+    return out.getvalue()
+
+
 def to_json(rows) -> str:
     return json.dumps(rows, indent=1, sort_keys=True)

@@ -2,7 +2,8 @@ rule validate:
     input:
         unpack(validation_inputs),
     output:
-        md=report("figures/validation.md", caption="../report/validation.rst", category="Validation"),
+        md="figures/validation.md",
+        csv=report("results/validation.csv", caption="../report/validation.rst", category="Validation"),
         json="results/validation.json",
     params:
         results=result_keys(),

@@ -18,5 +18,7 @@ with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contex
     rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
                                snakemake.params.case_variants, snakemake.params.breakaway_variants)
     write_text(validation.to_json(rows), snakemake.output.json)
+    write_text(validation.to_csv(rows, snakemake.params.case_variants, snakemake.params.breakaway_variants),
+               snakemake.output.csv)
     write_text(validation.markdown(rows, snakemake.params.case_variants, snakemake.params.breakaway_variants),
                snakemake.output.md)
