@@ -78,6 +78,10 @@ def _finish(fig, fig_id, caption):
              fontsize=9, style="italic", color="0.25")
     fig.draw_without_rendering()  # constrained layout once, then frozen: each save draws only once
     fig.set_layout_engine(None)
+    # the layout solver's last digits vary between processes: round the frozen axes positions so the
+    # PDF coordinates (printed to 1e-6 pt) are the same in every run
+    for ax in fig.axes:
+        ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
     return fig
 
 
