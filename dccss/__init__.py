@@ -15,7 +15,8 @@ Typical use::
 
 Modules: ``geometry`` (Table 1 parameters, derived lengths), ``kinematics`` (bodies, corners,
 contact points), ``constraints`` (the constraint sets and their Jacobians), ``newton`` (the
-solver), ``models`` (time steppers), ``excitation`` (X_g(t)), ``results`` (datasets),
+solver), ``models`` (time steppers), ``excitation`` (X_g(t)), ``records`` (recorded accelerations),
+``sweep`` (batched runs reduced to summaries), ``results`` (datasets),
 ``simulation`` (one case in, one dataset out), ``case`` and ``cli`` (case files, ``dccss run``).
 """
 
@@ -26,7 +27,7 @@ from ._version import __version__
 # the public names, imported on first use so that e.g. `dccss.plotting` loads no solver code
 _LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "geometry", "NewtonOptions": "newton",
          "ConvergenceError": "newton", "SingularJacobianError": "newton", "simulate": "simulation",
-         "breakaway": "simulation"}
+         "breakaway": "simulation", "Record": "records"}
 __all__ = ["__version__", *_LAZY]
 
 

@@ -9,6 +9,8 @@ Format (lengths in m, angles in degrees, times in s)::
                 # amplitude may be "capacity": R1 sin(alpha1 - alpha21), Table 1's X_g,max
                 # or {kind: table, file: record.csv}  (columns time, displacement; path
                 #     relative to the case file)
+                # or {kind: record, file: rec.AT2, scale: 1.0, window: [t0, t1], baseline: linear}
+                #     (a PEER NGA .AT2 or a time,acceleration CSV, integrated to displacement)
     theta2_0: 0.0          # optional, default 0
     dt: 0.01
     model: compliant       # or stick_slip
@@ -38,7 +40,8 @@ from .simulation import simulate
 REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None}
 GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
-EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",)}
+EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
+EXCITATION_OPTIONAL = {"record": ("scale", "window", "baseline")}
 
 
 class CaseError(ValueError):
@@ -103,7 +106,7 @@ def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
     if not isinstance(value, dict):
         raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
     kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
-    check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind])
+    check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind], EXCITATION_OPTIONAL.get(kind, ()))
     if kind == "sine":
         amplitude = value["amplitude"]
         amplitude = geometry.capacity1 if amplitude == "capacity" else number(amplitude, f"{key}.amplitude")
@@ -112,8 +115,27 @@ def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
                     number(value["duration"], f"{key}.duration", positive=True))
     if not isinstance(value["file"], str):
         raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
+    if kind == "table":
+        try:
+            return Table.from_csv(base / value["file"])
+        except ValueError as err:
+            raise CaseError(f"{key}.file: {err}") from None
+    return record_from(value, base, key)
+
+
+def record_from(value, base: Path, key="excitation"):
+    """A Record (acceleration file integrated to displacement) from its mapping."""
+    from .records import BASELINES, Record
+
+    scale = number(value.get("scale", 1.0), f"{key}.scale")
+    window = value.get("window")
+    if window is not None:
+        if not isinstance(window, list) or len(window) != 2:
+            raise CaseError(f"{key}.window: expected [t_start, t_end] in s, got {window!r}")
+        window = tuple(number(w, f"{key}.window") for w in window)
+    baseline = choice(value.get("baseline", "linear"), f"{key}.baseline", BASELINES)
     try:
-        return Table.from_csv(base / value["file"])
+        return Record.from_file(base / value["file"], scale=scale, window=window, baseline=baseline)
     except ValueError as err:
         raise CaseError(f"{key}.file: {err}") from None
 

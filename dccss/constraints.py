@@ -31,11 +31,12 @@ Q_NAMES = ("Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3", "theta3
 DIAGONALS = ("AD", "BC")
 
 
-def tangent_row(F, corner: Corner, point, normal):
+def tangent_row(F, corner: Corner, point, normal, rotations=True):
     """Tangency row (r_P^2 - r_P^j)^T n_P^j (Eqs. 6-11) and its Jacobian entries (Eqs. 17-28).
 
     point, normal : the previous contact point and unit normal in the plate frame (complex),
-    held fixed during the iterations; F = frames(q). Returns g and {column: dg/dq_column}.
+    held fixed during the iterations; F = frames(q). Returns g and {column: dg/dq_column};
+    ``rotations=False`` leaves out the plate-rotation column (prescribed in every set).
     """
     R2, e2 = F[1]
     Rj, ej = F[corner.body // 3]
@@ -43,12 +44,11 @@ def tangent_row(F, corner: Corner, point, normal):
     n = ej * normal
     lever = R2 + arm - Rj
     b = corner.body
-    return dot(lever - ej * point, n), {
-        3: n.real, 4: n.imag, 5: dot(1j * arm, n),
-        b: -n.real, b + 1: -n.imag,
+    entries = {3: n.real, 4: n.imag, 5: dot(1j * arm, n), b: -n.real, b + 1: -n.imag}
+    if rotations:
         # the x-bar, y-bar terms cancel (point and normal rotate together): Eqs. 18, 21, 25, 28
-        b + 2: dot(lever, 1j * n),
-    }
+        entries[b + 2] = dot(lever, 1j * n)
+    return dot(lever - ej * point, n), entries
 
 
 def pin_rows(F, corner: Corner, point):
@@ -64,6 +64,30 @@ def pin_rows(F, corner: Corner, point):
             (h.imag, {4: 1.0, 5: arm.imag, b + 1: -1.0, b + 2: -pin.imag})]
 
 
+def stack_residual(rows, shape):
+    """The contact residual (..., m) from ``rows`` (one case: ``shape`` is ())."""
+    if not shape:
+        return np.array([gi for gi, _ in rows])
+    g = np.empty((len(rows),) + shape)
+    for i, (gi, _) in enumerate(rows):
+        g[i] = gi
+    return np.moveaxis(g, 0, -1)
+
+
+def stack_jacobian(rows, columns, shape):
+    """The Jacobian (..., m, len(columns)) from ``rows``; rows and columns first, then a view with
+    the batch first (contiguous writes)."""
+    if not shape:
+        return np.array([[entries.get(c, 0.0) for c in columns] for _, entries in rows])
+    where = {c: j for j, c in enumerate(columns)}
+    J = np.zeros((len(rows), len(columns)) + shape)
+    for i, (_, entries) in enumerate(rows):
+        for col, value in entries.items():
+            if col in where:
+                J[i, where[col]] = value
+    return np.moveaxis(J, (0, 1), (-2, -1))
+
+
 class ConstraintSet:
     """Prescribed unit rows plus contact rows. Subclasses set the class attributes and
     ``values`` (..., len(prescribed)) and implement ``rows`` and ``row_labels``."""
@@ -76,8 +100,9 @@ class ConstraintSet:
     paper_columns: tuple[int, ...]
     values: np.ndarray
 
-    def rows(self, F) -> list:
-        """Contact rows as [(g_i, {column: dg_i/dq_column}), ...]; F = frames(q)."""
+    def rows(self, F, rotations=True) -> list:
+        """Contact rows as [(g_i, {column: dg_i/dq_column}), ...]; F = frames(q); without the
+        plate-rotation columns if ``rotations`` is False."""
         raise NotImplementedError
 
     def row_labels(self) -> list[str]:
@@ -86,20 +111,8 @@ class ConstraintSet:
     def contact(self, q, columns=tuple(range(9))):
         """Contact rows g (..., m) and their Jacobian dg/dq (..., m, len(columns)), by default
         on all nine coordinates."""
-        rows = self.rows(frames(q))
-        if q.ndim == 1:  # one case: Python scalars, assembled in one call
-            return (np.array([gi for gi, _ in rows]),
-                    np.array([[entries.get(c, 0.0) for c in columns] for _, entries in rows]))
-        shape = q.shape[:-1]
-        where = {c: j for j, c in enumerate(columns)}
-        g = np.empty(shape + (len(rows),))
-        J = np.zeros(shape + (len(rows), len(columns)))
-        for i, (gi, entries) in enumerate(rows):
-            g[..., i] = gi
-            for col, value in entries.items():
-                if col in where:
-                    J[..., i, where[col]] = value
-        return g, J
+        rows = self.rows(frames(q), rotations=bool({2, 8} & set(columns)))
+        return stack_residual(rows, q.shape[:-1]), stack_jacobian(rows, columns, q.shape[:-1])
 
     def prescribe(self, q):
         """Copy of q with the prescribed coordinates set: the exact solution of the unit rows."""
@@ -159,8 +172,8 @@ class Compliant(ConstraintSet):
         self.corners, self.points, self.normals = corners, points, normals
         self.values = _stack_values(Xg, 0.0, 0.0, Rx3, 0.0)
 
-    def rows(self, F):
-        return [tangent_row(F, c, p, n) for c, p, n in zip(self.corners, self.points, self.normals)]
+    def rows(self, F, rotations=True):
+        return [tangent_row(F, c, p, n, rotations) for c, p, n in zip(self.corners, self.points, self.normals)]
 
     def row_labels(self):
         return [f"row {4 + i} (Eq. {8 + i}: {c.name}^2 sliding on the tangent to C_nf^{1 if i < 2 else 3})"
@@ -195,7 +208,7 @@ class Sticking(ConstraintSet):
         self.corners, self.points = corners, points
         self.values = _stack_values(Xg, 0.0, 0.0, Rx3, 0.0)
 
-    def rows(self, F):
+    def rows(self, F, rotations=True):
         return [row for c, p in zip(self.corners, self.points) for row in pin_rows(F, c, p)]
 
     def row_labels(self):
@@ -230,9 +243,9 @@ class Slipping(ConstraintSet):
         self.n12, self.k1, self.k3 = n12, k1, k3
         self.values = _stack_values(q_stick[..., 0], q_stick[..., 1], q_stick[..., 2], Ry3_rc, 0.0)
 
-    def rows(self, F):
+    def rows(self, F, rotations=True):
         nx, ny = self.n12.real, self.n12.imag
-        return [tangent_row(F, c, p, n) for c, p, n in zip(self.corners, self.points, self.normals)] + [
+        return [tangent_row(F, c, p, n, rotations) for c, p, n in zip(self.corners, self.points, self.normals)] + [
             (dot(F[1][0], self.n12) - self.k1, {3: nx, 4: ny}),
             (dot(F[2][0], self.n12) - self.k3, {6: nx, 7: ny}),
         ]

@@ -40,7 +40,12 @@ def frames(q):
     if isinstance(q, list) or q.ndim == 1:
         x = q if isinstance(q, list) else q.tolist()
         return [(complex(x[b], x[b + 1]), cmath.exp(1j * x[b + 2])) for b in (RB1, RB2, RB3)]
-    return [(q[..., b] + 1j * q[..., b + 1], np.exp(1j * q[..., b + 2])) for b in (RB1, RB2, RB3)]
+    return [(q[..., b] + 1j * q[..., b + 1], _expi_batch(q[..., b + 2])) for b in (RB1, RB2, RB3)]
+
+
+def _expi_batch(theta):
+    # the plates' rotations are prescribed zero: e^{i0} = 1 exactly, without the complex exp
+    return np.exp(1j * theta) if theta.any() else 1.0 + 0.0j
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,9 +114,19 @@ def local(F, corner: Corner):
 def interpenetration(q, geometry):
     """Signed interpenetration I_A, I_B, I_C, I_D (..., 4) (m), positive into the plate,
     measured along the radius through the corner: |r_P - C^j| - R^j."""
+    return corner_diagnostics(q, geometry)[0]
+
+
+def corner_diagnostics(q, geometry):
+    """Interpenetration (..., 4) and clearance to the rings (..., 2), from one pass over the corners."""
     F = frames(q)
-    return np.stack([np.abs(position(F, c) - circle_centre(F, c)) - c.radius
-                     for c in all_corners(geometry)], axis=-1)
+    interp, reach = [], []
+    for c in all_corners(geometry):
+        u = local(F, c)
+        interp.append(np.abs(u - c.centre) - c.radius)
+        reach.append(np.abs(np.real(u)))
+    gap = geometry.ring_inner_x - np.stack([np.maximum(reach[0], reach[1]), np.maximum(reach[2], reach[3])], -1)
+    return np.stack(interp, axis=-1), gap
 
 
 def contact_point(F, corner: Corner, normals="signed"):
@@ -142,7 +157,4 @@ def clearance(q, geometry):
     """Horizontal clearance (..., 2) between the pad and the retaining rings of RB1 and RB3 (m):
     R^j sin(alpha^j) - max |x| of the plate's two corners in the plate frame. Negative when the
     pad has passed the ring: the device capacity is exceeded."""
-    F = frames(q)
-    reach = [np.abs(np.real(local(F, c))) for c in all_corners(geometry)]
-    return geometry.ring_inner_x - np.stack(
-        [np.maximum(reach[0], reach[1]), np.maximum(reach[2], reach[3])], axis=-1)
+    return corner_diagnostics(q, geometry)[1]

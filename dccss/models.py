@@ -11,7 +11,10 @@ Each step t_{n-1} -> t_n starts from the converged q(t_{n-1}) and
 
 Both start from the compatible configuration at theta^2(t_0) (RB3 offset by L sin theta^2).
 X_g is (T,) for one case or (T, ...) for a batch; geometry and theta^2(t_0) may be batches too.
-The functions return plain arrays, time first; ``dccss.results`` turns them into datasets.
+
+``compliant_steps``/``stick_slip_steps`` yield one dict per step (a sweep summarises them on
+the fly); ``compliant``/``stick_slip`` collect whole histories as arrays, time first, which
+``dccss.results`` turns into datasets.
 """
 
 from __future__ import annotations
@@ -33,9 +36,11 @@ def _start(geometry, Xg, theta2_0):
     shape = np.broadcast_shapes(q0.shape[:-1], Xg.shape[1:])
     T = Xg.shape[0]
     Xg = np.broadcast_to(Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:]), (T,) + shape)
+    q0 = np.broadcast_to(q0, shape + (9,))
     # one case runs on Python scalars (fast); a batch on arrays
-    steps = Xg.tolist() if not shape else Xg
-    return np.broadcast_to(q0, shape + (9,)), shape, steps
+    if not shape:
+        return q0, Xg.tolist(), float(q0[RB3])
+    return q0, Xg, q0[..., RB3]
 
 
 def _context(n, times, phase):
@@ -45,37 +50,26 @@ def _context(n, times, phase):
     return ctx
 
 
-def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
-              times=None) -> dict:
-    """Compliant sliding history for the imposed X_g at the step times.
-
-    Returns a dict of arrays: ``q`` (T, ..., 9); ``point``, ``normal`` (T, ..., 4) complex, the
-    contact data of the step ending at t_n (entry 0: that of q(t_0), for |C_q| at rest);
-    ``newton_iterations``, ``residual`` (T, ...); ``Rx3`` the guided abscissa of RB3.
-    """
-    q0, shape, Xg = _start(geometry, Xg, theta2_0)
-    T = len(Xg)
-    Rx3 = q0[..., RB3] if shape else float(q0[RB3])
+def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
+                    times=None):
+    """Yield, for n = 0..T-1, {"n", "q", "point", "normal", "newton_iterations", "residual"}:
+    the configuration at t_n and the contact data (plate-frame points and normals of A..D,
+    complex, stacked on a last axis of 4) of the step that ends there; at n = 0 those of
+    q(t_0) itself (for |C_q| at rest)."""
+    q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
     corners = all_corners(geometry)
-    q = np.empty((T,) + shape + (9,))
-    point = np.empty((T,) + shape + (4,), dtype=complex)
-    normal = np.empty_like(point)
-    iterations = np.zeros((T,) + shape, dtype=np.int32)
-    residual = np.zeros((T,) + shape)
-    q[0] = q0
-    for n in range(T):
-        F = frames(q[max(n - 1, 0)])
-        data = [contact_point(F, c, normals) for c in corners]
-        for i, (p, nn) in enumerate(data):
-            point[n, ..., i], normal[n, ..., i] = p, nn
-        if n == 0:
-            continue
-        cset = Compliant(corners, Xg[n], Rx3, *zip(*data))
-        guess = 2 * q[n - 1] - q[n - 2] if n > 1 else q[n - 1]  # linear predictor
-        result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
-        q[n], iterations[n], residual[n] = result.q, result.iterations, result.residual
-    return {"q": q, "point": point, "normal": normal, "newton_iterations": iterations,
-            "residual": residual, "Rx3": Rx3}
+    before = None
+    for n in range(len(Xg)):
+        F = frames(q)
+        points, normals_ = zip(*(contact_point(F, c, normals) for c in corners))
+        step = {"n": n, "q": q, "point": points, "normal": normals_, "newton_iterations": 0, "residual": 0.0}
+        if n > 0:
+            cset = Compliant(corners, Xg[n], Rx3, points, normals_)
+            guess = 2 * q - before if before is not None else q  # linear predictor
+            result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
+            before, q = q, result.q
+            step.update(q=q, newton_iterations=result.iterations, residual=result.residual)
+        yield step
 
 
 def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
@@ -93,45 +87,76 @@ def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
     return Slipping(corners, q_stick, points, normals_, n12, dot(C1, n12), dot(R3, n12), Ry3_rc)
 
 
-def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
-               times=None) -> dict:
-    """Stick-slip history for the imposed X_g at the step times.
-
-    Returns a dict of arrays: ``q`` (T, ..., 9) at the end of each step (after slipping),
-    ``q_stick`` (T, ..., 9) at the end of its sticking phase (NaN at n = 0), ``diagonal_BC``
-    (T, ...) True where B-C jammed, ``newton_iterations(_stick)`` and ``residual(_stick)``.
-    """
-    q0, shape, Xg = _start(geometry, Xg, theta2_0)
-    T = len(Xg)
-    Rx3 = q0[..., RB3] if shape else float(q0[RB3])
-    q = np.empty((T,) + shape + (9,))
-    q_stick = np.full_like(q, np.nan)
-    bc = np.zeros((T,) + shape, dtype=bool)
-    its = {p: np.zeros((T,) + shape, dtype=np.int32) for p in ("stick", "slip")}
-    res = {p: np.zeros((T,) + shape) for p in ("stick", "slip")}
-    fixed = {d: diagonal(geometry, d == "BC") for d in ("AD", "BC")}
-    q[0] = q0
-    for n in range(1, T):
+def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
+                     times=None):
+    """Yield, for n = 0..T-1, {"n", "q", "q_stick", "diagonal_BC", "newton_iterations(_stick)",
+    "residual(_stick)"}: the configuration at t_n (end of slipping) and at the end of the
+    sticking phase of the step ending there (NaN at n = 0); diagonal_BC is True where B-C jammed."""
+    q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
+    batch = np.ndim(Xg) > 1
+    fixed = {False: diagonal(geometry, False), True: diagonal(geometry, True)}
+    yield {"n": 0, "q": q, "q_stick": np.full_like(q, np.nan), "diagonal_BC": np.zeros(np.shape(q)[:-1], bool),
+           "newton_iterations_stick": 0, "newton_iterations": 0, "residual_stick": 0.0, "residual": 0.0}
+    previous = None  # (q(t_{n-2}), q_stick(t_{n-1}), diagonal) for the predictors
+    for n in range(1, len(Xg)):
         down = Xg[n] < Xg[n - 1]
-        bc[n] = down
-        corners = (fixed["BC"] if down else fixed["AD"]) if not shape else diagonal(geometry, down)
-        F = frames(q[n - 1])
+        corners = diagonal(geometry, down) if batch else fixed[down]
+        F = frames(q)
         stick = Sticking(corners, Xg[n], Rx3, [local(F, c) for c in corners])
         # predictors: the previous step's sticking and slipping increments, if on the same diagonal
-        same = (bc[n] == bc[n - 1])[..., None] if n > 1 else False
-        guess = np.where(same, q[n - 1] + q_stick[n - 1] - q[n - 2], q[n - 1]) if shape else (
-            q[n - 1] + q_stick[n - 1] - q[n - 2] if same else q[n - 1])
-        r1 = newton.solve(stick, guess, options, _context(n, times, stick.phase))
+        if previous is None:
+            same, stick_guess = False, q
+        else:
+            same = (previous[2] == down)[..., None] if batch else previous[2] == down
+            stick_guess = np.where(same, q + previous[1] - previous[0], q) if batch else (
+                q + previous[1] - previous[0] if same else q)
+        r1 = newton.solve(stick, stick_guess, options, _context(n, times, stick.phase))
         slip = slip_set(geometry, corners, r1.q, normals)
-        guess = np.where(same, r1.q + q[n - 1] - q_stick[n - 1], r1.q) if shape else (
-            r1.q + q[n - 1] - q_stick[n - 1] if same else r1.q)
-        r2 = newton.solve(slip, guess, options, _context(n, times, slip.phase))
-        q_stick[n], q[n] = r1.q, r2.q
-        its["stick"][n], its["slip"][n] = r1.iterations, r2.iterations
-        res["stick"][n], res["slip"][n] = r1.residual, r2.residual
-    return {"q": q, "q_stick": q_stick, "diagonal_BC": bc,
-            "newton_iterations_stick": its["stick"], "newton_iterations": its["slip"],
-            "residual_stick": res["stick"], "residual": res["slip"], "Rx3": Rx3}
+        slip_guess = r1.q if previous is None else (
+            np.where(same, r1.q + q - previous[1], r1.q) if batch else (r1.q + q - previous[1] if same else r1.q))
+        r2 = newton.solve(slip, slip_guess, options, _context(n, times, slip.phase))
+        previous = (q, r1.q, down)
+        q = r2.q
+        yield {"n": n, "q": q, "q_stick": r1.q, "diagonal_BC": down,
+               "newton_iterations_stick": r1.iterations, "newton_iterations": r2.iterations,
+               "residual_stick": r1.residual, "residual": r2.residual}
+
+
+def _collect(steps, complex_keys=()) -> dict:
+    """Stack the per-step dicts into arrays, time first (contact data: last axis of 4)."""
+    rows = list(steps)
+    out = {}
+    one_case = np.ndim(rows[-1]["q"]) == 1
+    for key in rows[0]:
+        if key == "n":
+            continue
+        values = [r[key] for r in rows]
+        if one_case:  # scalars, (9,) arrays or 4-tuples: one call
+            out[key] = np.array(values)
+            continue
+        if key in complex_keys:
+            values = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in values]
+        shape = np.shape(values[-1])  # step 0 may hold scalars where later steps hold batch arrays
+        out[key] = np.stack([np.broadcast_to(v, shape) for v in values])
+    return out
+
+
+def compliant(geometry, Xg, theta2_0=0.0, **kw) -> dict:
+    """Compliant sliding history: arrays ``q`` (T, ..., 9); ``point``, ``normal`` (T, ..., 4)
+    complex; ``newton_iterations``, ``residual`` (T, ...); ``Rx3`` the guided abscissa of RB3.
+    Keywords as for ``compliant_steps``."""
+    out = _collect(compliant_steps(geometry, Xg, theta2_0, **kw), complex_keys=("point", "normal"))
+    out["Rx3"] = out["q"][0, ..., RB3]
+    return out
+
+
+def stick_slip(geometry, Xg, theta2_0=0.0, **kw) -> dict:
+    """Stick-slip history: arrays ``q``, ``q_stick`` (T, ..., 9), ``diagonal_BC``,
+    ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
+    Keywords as for ``stick_slip_steps``."""
+    out = _collect(stick_slip_steps(geometry, Xg, theta2_0, **kw))
+    out["Rx3"] = out["q"][0, ..., RB3]
+    return out
 
 
 def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
@@ -139,3 +164,10 @@ def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
     if model not in MODELS:
         raise ValueError(f"model must be one of {MODELS}, got {model!r}")
     return (compliant if model == "compliant" else stick_slip)(geometry, Xg, theta2_0, **kw)
+
+
+def steps(model, geometry, Xg, theta2_0=0.0, **kw):
+    """Dispatch to ``compliant_steps`` or ``stick_slip_steps`` by name."""
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {MODELS}, got {model!r}")
+    return (compliant_steps if model == "compliant" else stick_slip_steps)(geometry, Xg, theta2_0, **kw)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constraints import Q_NAMES
+from .constraints import Q_NAMES, stack_jacobian, stack_residual
 from .kinematics import frames
 
 
@@ -69,8 +69,9 @@ def solve(cset, q0, options: NewtonOptions = NewtonOptions(), context: dict | No
 
 def _solve_one(cset, q, options, context):
     x, free, tol = q.tolist(), cset.free, options.tol
+    rotations = bool({2, 8} & set(free))  # plate rotations are prescribed in every set
     for it in range(options.max_iter + 1):
-        rows = cset.rows(frames(x))
+        rows = cset.rows(frames(x), rotations=rotations)
         g = [gi for gi, _ in rows]
         if all(abs(gi) <= tol for gi in g):  # NaN fails
             return NewtonResult(np.array(x), it, max(abs(gi) for gi in g))
@@ -89,14 +90,17 @@ def _solve_one(cset, q, options, context):
 def _solve_batch(cset, q, options, context):
     free, columns = cset.free, np.array(cset.free)
     iterations = np.zeros(q.shape[:-1], dtype=np.int32)
+    shape, rotations = q.shape[:-1], bool({2, 8} & set(free))
     for it in range(options.max_iter + 1):
-        g, J = cset.contact(q, free)
+        rows = cset.rows(frames(q), rotations=rotations)
+        g = stack_residual(rows, shape)
         norm = np.abs(g).max(axis=-1)
         active = ~(norm <= options.tol)  # NaN counts as not converged
         if not active.any():
             return NewtonResult(q, iterations, norm)
         if it == options.max_iter:
             break
+        J = stack_jacobian(rows, free, shape)  # only when a step is taken
         try:
             dq = np.linalg.solve(J, g[..., None])[..., 0]
         except np.linalg.LinAlgError:

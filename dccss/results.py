@@ -13,7 +13,7 @@ import xarray as xr
 from ._version import __version__
 from .constraints import Q_NAMES, Compliant
 from .geometry import Geometry
-from .kinematics import CORNERS, all_corners, clearance, contact_angle, interpenetration
+from .kinematics import CORNERS, all_corners, contact_angle, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
 REFERENCE = (
@@ -75,10 +75,9 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
         "rise": _var(t, q[:, 7] - geometry.Ry3_compatible(0.0), "m",
                      "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
     }
-    I = interpenetration(q, geometry)
+    I, gap = corner_diagnostics(q, geometry)
     for i, c in enumerate(CORNERS):
         data[f"I_{c}"] = _var(t, I[:, i], "m", f"interpenetration at corner {c}2 (positive into the plate)")
-    gap = clearance(q, geometry)
     for j, plate in enumerate(("1", "3")):
         data[f"clearance_{plate}"] = _var(t, gap[:, j], "m",
                                           f"clearance between the pad and the retaining ring of RB{plate}")

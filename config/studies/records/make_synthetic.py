@@ -1,0 +1,69 @@
+"""Write ``synthetic.AT2``: a SYNTHETIC accelerogram for the recorded-motion studies.
+
+This is not a recorded earthquake. Real records (e.g. from the PEER NGA-West2 database) may not be
+redistributed, so the repository ships this deterministic stand-in with realistic amplitudes:
+
+* 20 s at dt = 0.01 s (2000 samples), in the PEER ``.AT2`` format (units of g);
+* stationary noise: a sum of 200 sines at evenly spaced frequencies from 0.3 to 5 Hz with random
+  phases (``numpy.random.default_rng(2021)``), amplitudes (f/fc)² / (1 + (f/fc)²) with
+  fc = 0.3 Hz, a gentle high-pass that limits the low-frequency content and thus the drift;
+* a Jennings envelope: quadratic rise over 0-2 s, strong motion 2-8 s, exponential decay to
+  exp(-3) ≈ 5 % at 20 s;
+* scaled to a peak ground acceleration of 0.35 g.
+
+After the default processing of ``dccss.records.Record`` (linear velocity baseline) the peak
+ground displacement is about 15 cm (PGV about 0.38 m/s), below the ~19-22 cm capacity of the Table 1 prototypes.
+
+To run a study on a real record instead, download it as a PEER ``.AT2`` file (or write a CSV
+with columns ``time`` in s and ``acceleration`` in m/s²) and point the case at it, e.g. in Python
+``Record.from_file("RSN1234_NORTHR_XYZ090.AT2", scale=1.0, window=(0.0, 20.0))``, or in a case
+file an excitation of kind ``record`` whose ``file`` is that path (relative to the case file).
+
+Usage: ``python config/studies/records/make_synthetic.py`` (rewrites the file next to it).
+"""
+
+from pathlib import Path
+
+import numpy as np
+
+from dccss.records import Record, write_at2
+
+DT = 0.01  # s
+NPTS = 2000
+PGA_G = 0.35
+SEED = 2021
+F_LO, F_HI, N_FREQ, F_CORNER = 0.3, 5.0, 200, 0.3  # Hz, Hz, -, Hz
+RISE, STRONG_END, DECAY = 2.0, 8.0, 3.0  # s, s, e-folds from STRONG_END to the end
+OUT = Path(__file__).with_name("synthetic.AT2")
+
+
+def envelope(t):
+    """Jennings envelope: (t/RISE)² up to RISE, 1 up to STRONG_END, then exponential decay."""
+    decay = np.exp(-DECAY * (t - STRONG_END) / (t[-1] - STRONG_END))
+    return np.where(t < RISE, (t / RISE) ** 2, np.where(t > STRONG_END, decay, 1.0))
+
+
+def synthetic_acceleration():
+    """(t, acceleration in g) of the synthetic record."""
+    rng = np.random.default_rng(SEED)
+    t = DT * np.arange(NPTS)
+    f = np.linspace(F_LO, F_HI, N_FREQ)
+    amplitude = (f / F_CORNER) ** 2 / (1 + (f / F_CORNER) ** 2)
+    phase = rng.uniform(0.0, 2 * np.pi, N_FREQ)
+    noise = (amplitude[:, None] * np.sin(2 * np.pi * f[:, None] * t + phase[:, None])).sum(axis=0)
+    acc = noise * envelope(t)
+    return t, PGA_G * acc / np.max(np.abs(acc))
+
+
+def main():
+    _, acc = synthetic_acceleration()
+    write_at2(OUT, DT, acc, title=f"SYNTHETIC ACCELEROGRAM, NOT A RECORDED MOTION: dccss make_synthetic.py, "
+                                  f"seed {SEED}, {F_LO}-{F_HI} Hz, PGA {PGA_G} g",
+              database="dccss synthetic record (config/studies/records/make_synthetic.py)")
+    record = Record.from_file(OUT)
+    print(f"wrote {OUT}: {record.npts} samples, dt = {record.dt} s, PGA = {record.pga / 9.80665:.3f} g, "
+          f"PGV = {record.pgv:.3f} m/s, PGD = {record.pgd:.3f} m")
+
+
+if __name__ == "__main__":
+    main()
