@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .kinematics import Corner, dot, frames
+from .kinematics import Corner, dot, frames, turn
 
 Q_NAMES = ("Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3", "theta3")
 DIAGONALS = ("AD", "BC")
@@ -41,14 +41,14 @@ def tangent_row(F, corner: Corner, point, normal, rotations=True):
     R2, e2 = F[1]
     Rj, ej = F[corner.body // 3]
     arm = e2 * corner.u2
-    n = ej * normal
+    n = turn(ej, normal)
     lever = R2 + arm - Rj
     b = corner.body
     entries = {3: n.real, 4: n.imag, 5: dot(1j * arm, n), b: -n.real, b + 1: -n.imag}
     if rotations:
         # the x-bar, y-bar terms cancel (point and normal rotate together): Eqs. 18, 21, 25, 28
         entries[b + 2] = dot(lever, 1j * n)
-    return dot(lever - ej * point, n), entries
+    return dot(lever - turn(ej, point), n), entries
 
 
 def pin_rows(F, corner: Corner, point):
@@ -57,7 +57,7 @@ def pin_rows(F, corner: Corner, point):
     R2, e2 = F[1]
     Rj, ej = F[corner.body // 3]
     arm = 1j * e2 * corner.u2
-    pin = 1j * ej * point
+    pin = 1j * turn(ej, point)
     h = R2 - 1j * arm - Rj + 1j * pin
     b = corner.body
     return [(h.real, {3: 1.0, 5: arm.real, b: -1.0, b + 2: -pin.real}),

@@ -28,7 +28,7 @@ def expi(theta):
 
 
 def dot(a, b):
-    """Scalar product of planar vectors given as complex numbers."""
+    """Scalar product of planar vectors given as complex numbers, Re(a conj(b))."""
     return a.real * b.real + a.imag * b.imag
 
 
@@ -43,9 +43,17 @@ def frames(q):
     return [(q[..., b] + 1j * q[..., b + 1], _expi_batch(q[..., b + 2])) for b in (RB1, RB2, RB3)]
 
 
+#: e^{i theta} of a batch whose rotations are all exactly zero (the plates, in every set)
+UNIT = 1.0 + 0.0j
+
+
 def _expi_batch(theta):
-    # the plates' rotations are prescribed zero: e^{i0} = 1 exactly, without the complex exp
-    return np.exp(1j * theta) if theta.any() else 1.0 + 0.0j
+    return np.exp(1j * theta) if theta.any() else UNIT
+
+
+def turn(e, z):
+    """e z, skipping the product when e is exactly UNIT (a batch of unrotated plates)."""
+    return z if e is UNIT else e * z
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,13 +110,14 @@ def position(F, corner: Corner):
 def circle_centre(F, corner: Corner):
     """Global position of the concave circle centre of the corner's plate (complex)."""
     R, e = F[corner.body // 3]
-    return R + e * corner.centre
+    return R + turn(e, corner.centre)
 
 
 def local(F, corner: Corner):
     """The corner's position in its plate's frame (complex)."""
     R, e = F[corner.body // 3]
-    return (position(F, corner) - R) * e.conjugate()
+    d = position(F, corner) - R
+    return d if e is UNIT else d * e.conjugate()
 
 
 def interpenetration(q, geometry):
@@ -117,27 +126,29 @@ def interpenetration(q, geometry):
     return corner_diagnostics(q, geometry)[0]
 
 
-def corner_diagnostics(q, geometry):
-    """Interpenetration (..., 4) and clearance to the rings (..., 2), from one pass over the corners."""
-    F = frames(q)
-    interp, reach = [], []
-    for c in all_corners(geometry):
-        u = local(F, c)
-        interp.append(np.abs(u - c.centre) - c.radius)
-        reach.append(np.abs(np.real(u)))
+def corner_diagnostics(q, geometry, locals_=None):
+    """Interpenetration (..., 4) and clearance to the rings (..., 2), from one pass over the
+    corners (or from their plate-frame positions ``locals_``, if already known)."""
+    corners = all_corners(geometry)
+    if locals_ is None:
+        F = frames(q)
+        locals_ = [local(F, c) for c in corners]
+    interp = [np.abs(u - c.centre) - c.radius for u, c in zip(locals_, corners)]
+    reach = [np.abs(np.real(u)) for u in locals_]
     gap = geometry.ring_inner_x - np.stack([np.maximum(reach[0], reach[1]), np.maximum(reach[2], reach[3])], -1)
     return np.stack(interp, axis=-1), gap
 
 
-def contact_point(F, corner: Corner, normals="signed"):
+def contact_point(F, corner: Corner, normals="signed", u=None):
     """Previous contact point: radial projection of the corner onto its concave circle.
 
     Returns the plate-frame point and unit normal (complex), the normal pointing from the point
     to the circle centre (Eq. 7). With ``normals="unsigned"`` the normal is built from |alpha|
     instead of the signed contact angle alpha (the authors' evident computation): it is
-    mirrored when the point lies across the plate axis from its corner.
+    mirrored when the point lies across the plate axis from its corner. ``u``: the corner's
+    plate-frame position, if already known.
     """
-    d = local(F, corner) - corner.centre
+    d = (local(F, corner) if u is None else u) - corner.centre
     n = -d / abs(d)
     point = corner.centre - corner.radius * n
     if normals == "unsigned":

@@ -52,24 +52,29 @@ def _context(n, times, phase):
 
 def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
                     times=None):
-    """Yield, for n = 0..T-1, {"n", "q", "point", "normal", "newton_iterations", "residual"}:
-    the configuration at t_n and the contact data (plate-frame points and normals of A..D,
-    complex, stacked on a last axis of 4) of the step that ends there; at n = 0 those of
-    q(t_0) itself (for |C_q| at rest)."""
+    """Yield, for n = 0..T-1, {"n", "q", "local", "point", "normal", "newton_iterations",
+    "residual"}: the configuration at t_n, the plate-frame positions of A..D there, and the
+    contact data (plate-frame points and normals of A..D, complex) of the step that ends there;
+    at n = 0 those of q(t_0) itself (for |C_q| at rest)."""
     q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
     corners = all_corners(geometry)
+    F = frames(q)
+    locals_ = [local(F, c) for c in corners]
+    points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
+    yield {"n": 0, "q": q, "local": locals_, "point": points, "normal": normals_, "newton_iterations": 0,
+           "residual": 0.0}
     before = None
-    for n in range(len(Xg)):
-        F = frames(q)
-        points, normals_ = zip(*(contact_point(F, c, normals) for c in corners))
-        step = {"n": n, "q": q, "point": points, "normal": normals_, "newton_iterations": 0, "residual": 0.0}
-        if n > 0:
-            cset = Compliant(corners, Xg[n], Rx3, points, normals_)
-            guess = 2 * q - before if before is not None else q  # linear predictor
-            result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
-            before, q = q, result.q
-            step.update(q=q, newton_iterations=result.iterations, residual=result.residual)
-        yield step
+    for n in range(1, len(Xg)):
+        cset = Compliant(corners, Xg[n], Rx3, points, normals_)
+        guess = 2 * q - before if before is not None else q  # linear predictor
+        result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
+        step = {"n": n, "q": result.q, "point": points, "normal": normals_,
+                "newton_iterations": result.iterations, "residual": result.residual}
+        before, q = q, result.q
+        F = frames(q)  # the next step's contact data
+        locals_ = [local(F, c) for c in corners]
+        points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
+        yield step | {"local": locals_}
 
 
 def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
@@ -145,7 +150,7 @@ def compliant(geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """Compliant sliding history: arrays ``q`` (T, ..., 9); ``point``, ``normal`` (T, ..., 4)
     complex; ``newton_iterations``, ``residual`` (T, ...); ``Rx3`` the guided abscissa of RB3.
     Keywords as for ``compliant_steps``."""
-    out = _collect(compliant_steps(geometry, Xg, theta2_0, **kw), complex_keys=("point", "normal"))
+    out = _collect(compliant_steps(geometry, Xg, theta2_0, **kw), complex_keys=("point", "normal", "local"))
     out["Rx3"] = out["q"][0, ..., RB3]
     return out
 

@@ -9,9 +9,12 @@ iterations. Memory is O(cases), whatever the number of steps.
 
 from __future__ import annotations
 
+from dataclasses import fields
+
 import numpy as np
 
 from . import models
+from .geometry import Geometry
 from .kinematics import CORNERS, corner_diagnostics
 
 #: summary variable -> (units, long_name); "stick" entries exist for stick-slip only
@@ -39,12 +42,18 @@ _REDUCE = {"theta2_max_abs": np.fmax, "rise_max": np.fmax, "I_max": np.fmax, "cl
 
 def summarize(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """Run ``model`` on the batch (X_g of shape (T, ...)) and return the summaries (...)."""
+    Xg = np.asarray(Xg, dtype=float)
+    shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
+    if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
+        one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
+        out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), **kw)
+        return {k: np.reshape(v, shape) for k, v in out.items()}
     rest = geometry.Ry3_compatible(0.0)
     acc, previous = None, None
     for step in models.steps(model, geometry, Xg, theta2_0, **kw):
         q = step["q"]
         theta2, rise = np.degrees(q[..., 5]), q[..., 7] - rest
-        interp, gap = corner_diagnostics(q, geometry)
+        interp, gap = corner_diagnostics(q, geometry, step.get("local"))
         its = np.asarray(step["newton_iterations"]) + np.asarray(step.get("newton_iterations_stick", 0))
         current = {"theta2_max_abs": np.abs(theta2), "rise_max": rise, "I_max": interp,
                    "clearance_min": gap.min(axis=-1), "newton_iterations_max": its, "iterations": its}
