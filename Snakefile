@@ -1,19 +1,30 @@
 # dccss: reproduce Bianco, Monti & Belfiore (2021) with one command:
 #     snakemake --profile profiles/default
-# or run a new study: snakemake --profile profiles/default --configfile config/studies/<name>.yaml
+# or run a new study through the same library:
+#     snakemake --profile profiles/default --configfile config/studies/<name>.yaml
 from snakemake.utils import validate
 
 
-configfile: "config/config.yaml"
+if not config:  # no --configfile: the paper study
+
+    configfile: "config/config.yaml"
 
 
-validate(config, "workflow/schemas/config.schema.yaml")
+if "study" in config:
 
+    validate(config, "workflow/schemas/study.schema.yaml")
 
-include: "workflow/rules/common.smk"
-include: "workflow/rules/simulate.smk"
-include: "workflow/rules/figures.smk"
-include: "workflow/rules/validate.smk"
+    include: "workflow/rules/study_common.smk"
+    include: "workflow/rules/study.smk"
+
+else:
+
+    validate(config, "workflow/schemas/config.schema.yaml")
+
+    include: "workflow/rules/common.smk"
+    include: "workflow/rules/simulate.smk"
+    include: "workflow/rules/figures.smk"
+    include: "workflow/rules/validate.smk"
 
 
 rule all:

@@ -160,6 +160,19 @@ class Case:
                         attrs=attrs)
 
 
+def newton_from(value, key="newton") -> NewtonOptions:
+    """Newton-Raphson options from an optional mapping {tol, max_iter}."""
+    options = NewtonOptions()
+    if value is None:
+        return options
+    check_keys(value, key, (), ("tol", "max_iter"))
+    tol = number(value.get("tol", options.tol), f"{key}.tol", positive=True)
+    max_iter = value.get("max_iter", options.max_iter)
+    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
+        raise CaseError(f"{key}.max_iter: expected an integer >= 1, got {max_iter!r}")
+    return NewtonOptions(tol=tol, max_iter=max_iter)
+
+
 def parameters_hash(mapping) -> str:
     """SHA-256 of a case mapping in canonical JSON (sorted keys): the provenance of a result."""
     return hashlib.sha256(json.dumps(mapping, sort_keys=True, default=str).encode()).hexdigest()
@@ -169,14 +182,7 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     """Validate a case mapping (as loaded from YAML); errors name the key."""
     check_keys(mapping, "case", REQUIRED, OPTIONAL)
     m = {**OPTIONAL, **mapping}
-    options = NewtonOptions()
-    if m["newton"] is not None:
-        check_keys(m["newton"], "newton", (), ("tol", "max_iter"))
-        tol = number(m["newton"].get("tol", options.tol), "newton.tol", positive=True)
-        max_iter = m["newton"].get("max_iter", options.max_iter)
-        if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
-            raise CaseError(f"newton.max_iter: expected an integer >= 1, got {max_iter!r}")
-        options = NewtonOptions(tol=tol, max_iter=max_iter)
+    options = newton_from(m["newton"])
     if m["id"] is not None and not isinstance(m["id"], str):
         raise CaseError(f"id: expected a string, got {m['id']!r}")
     geometry = geometry_from(m["prototype"])

@@ -43,6 +43,16 @@ def _start(geometry, Xg, theta2_0):
     return q0, Xg, q0[..., RB3]
 
 
+def _wrapped(q):
+    """q with theta2 in (-pi, pi]: Newton may land on theta2 + 2 pi k, the same configuration."""
+    theta2 = q[..., 5]
+    if np.all(np.abs(theta2) <= np.pi):
+        return q
+    q = q.copy()
+    q[..., 5] = theta2 - 2 * np.pi * np.round(theta2 / (2 * np.pi))
+    return q
+
+
 def _context(n, times, phase):
     ctx = {"step": n, "phase": phase}
     if times is not None:
@@ -68,9 +78,9 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
         cset = Compliant(corners, Xg[n], Rx3, points, normals_)
         guess = 2 * q - before if before is not None else q  # linear predictor
         result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
-        step = {"n": n, "q": result.q, "point": points, "normal": normals_,
+        step = {"n": n, "q": _wrapped(result.q), "point": points, "normal": normals_,
                 "newton_iterations": result.iterations, "residual": result.residual}
-        before, q = q, result.q
+        before, q = q, step["q"]
         F = frames(q)  # the next step's contact data
         locals_ = [local(F, c) for c in corners]
         points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
@@ -116,13 +126,15 @@ def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=ne
             stick_guess = np.where(same, q + previous[1] - previous[0], q) if batch else (
                 q + previous[1] - previous[0] if same else q)
         r1 = newton.solve(stick, stick_guess, options, _context(n, times, stick.phase))
-        slip = slip_set(geometry, corners, r1.q, normals)
-        slip_guess = r1.q if previous is None else (
-            np.where(same, r1.q + q - previous[1], r1.q) if batch else (r1.q + q - previous[1] if same else r1.q))
+        q_stick = _wrapped(r1.q)
+        slip = slip_set(geometry, corners, q_stick, normals)
+        slip_guess = q_stick if previous is None else (
+            np.where(same, q_stick + q - previous[1], q_stick) if batch else
+            (q_stick + q - previous[1] if same else q_stick))
         r2 = newton.solve(slip, slip_guess, options, _context(n, times, slip.phase))
-        previous = (q, r1.q, down)
-        q = r2.q
-        yield {"n": n, "q": q, "q_stick": r1.q, "diagonal_BC": down,
+        previous = (q, q_stick, down)
+        q = _wrapped(r2.q)
+        yield {"n": n, "q": q, "q_stick": q_stick, "diagonal_BC": down,
                "newton_iterations_stick": r1.iterations, "newton_iterations": r2.iterations,
                "residual_stick": r1.residual, "residual": r2.residual}
 

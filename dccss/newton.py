@@ -27,12 +27,18 @@ class SingularJacobianError(ConvergenceError):
     """The constraint Jacobian is singular: the constraint set has no unique solution here."""
 
 
+FAILURE_POLICIES = ("raise", "mark")
+
+
 @dataclass(frozen=True)
 class NewtonOptions:
-    """tol: max |contact residual| accepted (m); max_iter: iteration cap."""
+    """tol: max |contact residual| accepted (m); max_iter: iteration cap; on_failure: "raise"
+    (a ConvergenceError) or "mark" (the failed cases of a batch become NaN and are reported in
+    ``NewtonResult.failed``; the others go on)."""
 
     tol: float = 1e-12
     max_iter: int = 25
+    on_failure: str = "raise"
 
     def __post_init__(self):
         if isinstance(self.tol, bool) or not isinstance(self.tol, (int, float)) or not (
@@ -41,6 +47,8 @@ class NewtonOptions:
             raise ValueError(f"Newton tolerance 'tol' must be a finite number > 0, got {self.tol!r}")
         if isinstance(self.max_iter, bool) or not isinstance(self.max_iter, (int, np.integer)) or self.max_iter < 1:
             raise ValueError(f"Newton 'max_iter' must be an integer >= 1, got {self.max_iter!r}")
+        if self.on_failure not in FAILURE_POLICIES:
+            raise ValueError(f"Newton 'on_failure' must be one of {FAILURE_POLICIES}, got {self.on_failure!r}")
 
 
 @dataclass
@@ -48,6 +56,7 @@ class NewtonResult:
     q: np.ndarray  # (..., 9) solution
     iterations: np.ndarray  # (...,) Newton updates taken per case
     residual: np.ndarray  # (...,) final max |contact residual| (m)
+    failed: np.ndarray | bool = False  # (...,) cases marked failed (NaN), with on_failure="mark"
 
 
 def solve(cset, q0, options: NewtonOptions = NewtonOptions(), context: dict | None = None):
@@ -84,6 +93,8 @@ def _solve_one(cset, q, options, context):
             _singular(cset, J, context, ())
         for c, d in zip(free, dq.tolist()):
             x[c] -= d
+    if options.on_failure == "mark":
+        return NewtonResult(np.full(9, np.nan), it, float("nan"), True)
     _not_converged(cset, np.array(g), options, context, ())
 
 
@@ -91,27 +102,49 @@ def _solve_batch(cset, q, options, context):
     free, columns = cset.free, np.array(cset.free)
     iterations = np.zeros(q.shape[:-1], dtype=np.int32)
     shape, rotations = q.shape[:-1], bool({2, 8} & set(free))
+    mark = options.on_failure == "mark"
+    failed = np.isnan(q).any(axis=-1)  # cases that failed in an earlier phase or step
     for it in range(options.max_iter + 1):
         rows = cset.rows(frames(q), rotations=rotations)
         g = stack_residual(rows, shape)
         norm = np.abs(g).max(axis=-1)
-        active = ~(norm <= options.tol)  # NaN counts as not converged
+        active = ~(norm <= options.tol) & ~failed  # NaN counts as not converged
         if not active.any():
-            return NewtonResult(q, iterations, norm)
+            return NewtonResult(q, iterations, norm, failed)
         if it == options.max_iter:
             break
         J = stack_jacobian(rows, free, shape)  # only when a step is taken
         try:
             dq = np.linalg.solve(J, g[..., None])[..., 0]
         except np.linalg.LinAlgError:
-            det = np.abs(np.linalg.det(J))
-            _singular(cset, J, context, np.unravel_index(np.argmin(det), det.shape))
+            singular = _singular_cases(J, active)
+            if not mark:
+                _singular(cset, J, context, tuple(int(i) for i in np.argwhere(singular)[0]))
+            failed |= singular
+            q[singular] = np.nan
+            active &= ~singular
+            J[~active] = np.eye(len(free))  # solvable stand-ins for the cases not stepped
+            dq = np.linalg.solve(J, g[..., None])[..., 0]
         dq[~active] = 0.0
         q[..., columns] -= dq
         iterations += active
-    norm = np.where(np.isnan(norm), np.inf, norm)
-    index = np.unravel_index(np.argmax(norm), norm.shape)
+    if mark:
+        q[active] = np.nan
+        return NewtonResult(q, iterations, norm, failed | active)
+    score = np.where(active, np.where(np.isnan(norm), np.inf, norm), -np.inf)
+    index = np.unravel_index(np.argmax(score), score.shape)
     _not_converged(cset, g[index], options, context, index)
+
+
+def _singular_cases(J, active):
+    """Boolean mask of the active cases whose Jacobian is exactly singular."""
+    singular = np.zeros(active.shape, dtype=bool)
+    for index in zip(*np.nonzero(active)):
+        try:
+            np.linalg.solve(J[index], np.ones(J.shape[-1]))
+        except np.linalg.LinAlgError:
+            singular[index] = True
+    return singular
 
 
 def _where(context, index) -> str:

@@ -30,6 +30,8 @@ SUMMARIES = {
     "newton_iterations_mean": ("1", "mean Newton-Raphson iterations per step"),
     "sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, |theta2_stick - theta2(t_n-1)|"),
     "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase"),
+    "failed": ("1", "the solver failed for this case (its summaries are NaN)"),
+    "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
 }
 STICK_ONLY = ("sticking_rotation_max", "rise_stick_max")
 
@@ -41,17 +43,28 @@ _REDUCE = {"theta2_max_abs": np.fmax, "rise_max": np.fmax, "I_max": np.fmax, "cl
 
 
 def summarize(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """Run ``model`` on the batch (X_g of shape (T, ...)) and return the summaries (...)."""
+    """Run ``model`` on the batch (X_g of shape (T, ...)) and return the summaries (...).
+
+    With ``options=NewtonOptions(on_failure="mark")`` a case the solver fails on is reported
+    (``failed``, ``failure_time``, NaN summaries) while the others complete."""
     Xg = np.asarray(Xg, dtype=float)
     shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
     if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
         one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
         out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), **kw)
         return {k: np.reshape(v, shape) for k, v in out.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):  # failed cases are NaN by design
+        return _summarize(model, geometry, Xg, theta2_0, shape, **kw)
+
+
+def _summarize(model, geometry, Xg, theta2_0, shape, **kw):
     rest = geometry.Ry3_compatible(0.0)
-    acc, previous = None, None
+    times = kw.get("times")
+    acc, previous, failure = None, None, np.full(shape, np.nan)
     for step in models.steps(model, geometry, Xg, theta2_0, **kw):
         q = step["q"]
+        now = times[step["n"]] if times is not None else step["n"]
+        failure = np.where(np.isnan(failure) & np.isnan(q).any(axis=-1), now, failure)
         theta2, rise = np.degrees(q[..., 5]), q[..., 7] - rest
         interp, gap = corner_diagnostics(q, geometry, step.get("local"))
         its = np.asarray(step["newton_iterations"]) + np.asarray(step.get("newton_iterations_stick", 0))
@@ -72,4 +85,8 @@ def summarize(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
         out[f"I_{c}_max"] = acc["I_max"][..., i]
     if model == "stick_slip":
         out.update(sticking_rotation_max=acc["sticking_rotation_max"], rise_stick_max=acc["rise_stick_max"])
-    return out
+    failed = ~np.isnan(failure)
+    out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
+           for k, v in out.items()}
+    out["capacity_exceeded"] = np.where(failed, False, out["capacity_exceeded"])
+    return out | {"failed": failed, "failure_time": failure}

@@ -1,0 +1,75 @@
+wildcard_constraints:
+    study=STUDY.name,
+    model="compliant|stick_slip",
+    chunk="[0-9]+",
+    i="[0-9]+",
+
+
+rule study_chunk:
+    input:
+        study_files(),
+    output:
+        "results/studies/{study}/chunks/{model}_{chunk}.nc",
+    params:
+        study_dir=str(STUDY_FILE.parent),
+        study_hash=STUDY_HASH,
+    log:
+        "logs/studies/{study}/{model}_{chunk}.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/study_chunk.py"
+
+
+rule study_combine:
+    input:
+        chunk_files(),
+    output:
+        "results/studies/{study}/{study}.nc",
+    params:
+        study_dir=str(STUDY_FILE.parent),
+        study_hash=STUDY_HASH,
+    log:
+        "logs/studies/{study}/combine.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/study_combine.py"
+
+
+rule study_history:
+    input:
+        study_files(),
+    output:
+        "results/studies/{study}/histories/{model}_{i}.nc",
+    params:
+        study_dir=str(STUDY_FILE.parent),
+        study_hash=STUDY_HASH,
+    log:
+        "logs/studies/{study}/history_{model}_{i}.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/study_history.py"
+
+
+rule study_plots:
+    input:
+        combined=f"results/studies/{STUDY.name}/{STUDY.name}.nc",
+        histories=history_files(),
+    output:
+        [
+            report(f, caption="../report/study.rst", category="Study")
+            for f in study_plots()
+            if f.endswith(".png")
+        ],
+        [f for f in study_plots() if f.endswith(".pdf")],
+    params:
+        study_dir=str(STUDY_FILE.parent),
+        study_hash=STUDY_HASH,
+    log:
+        f"logs/studies/{STUDY.name}/plots.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/study_plots.py"
