@@ -12,9 +12,10 @@ if not config:  # no --configfile: the paper study
 
 if "study" in config:
 
+    include: "workflow/rules/study_common.smk"  # checks every key and sweep point, with clear messages
+
     validate(config, "workflow/schemas/study.schema.yaml")
 
-    include: "workflow/rules/study_common.smk"
     include: "workflow/rules/study.smk"
 
 else:

@@ -10,7 +10,6 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-
 #: (summary variable, label, scale to paper units, unit)
 MAP_VARIABLES = [
     ("theta2_max_abs", "max |θ²|", 1.0, "°"),

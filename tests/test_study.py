@@ -1,0 +1,184 @@
+"""Studies from config: validation, chunking, batched = one-case results, failures, the workflow."""
+
+import hashlib
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from dccss import models
+from dccss.excitation import Sine, step_times
+from dccss.geometry import Geometry
+from dccss.newton import NewtonOptions
+from dccss.prototypes import TABLE1
+from dccss.case import CaseError
+from dccss.study import Study
+from dccss.sweep import summarize
+
+ROOT = Path(__file__).resolve().parents[1]
+
+TINY = {
+    "study": {"name": "tiny", "description": "test"},
+    "prototype": "DFP1",
+    "symmetric": True,
+    "excitation": {"kind": "sine", "amplitude": 0.2, "omega": 30.0, "duration": 0.3},
+    "dt": 0.01,
+    "models": ["compliant", "stick_slip"],
+    "sweep": {"alpha21": [8.0, 10.0], "h2": [0.12, 0.15, 0.18]},
+    "chunk_size": 4,
+    "histories": [{"alpha21": 10.0, "h2": 0.15}],
+}
+
+
+def tiny(**changes):
+    config = yaml.safe_load(yaml.safe_dump(TINY))
+    for key, value in changes.items():
+        target, parts = config, key.split("__")
+        for p in parts[:-1]:
+            target = target[p]
+        if value is None:
+            del target[parts[-1]]
+        else:
+            target[parts[-1]] = value
+    return config
+
+
+def test_grid_and_chunks_cover_every_case_once():
+    study = Study.from_config(tiny())
+    assert study.shape == (2, 3) and study.n_cases == 6 and study.n_chunks == 2
+    cases = np.concatenate([study.chunk(k) for k in range(study.n_chunks)])
+    assert np.array_equal(cases, np.arange(6))
+    assert study.point(4) == {"alpha21": 10.0, "h2": 0.15}
+    g = study.geometry(np.array([4]))
+    assert g.alpha23[0] == pytest.approx(np.radians(10.0))  # symmetric: cap 23 follows cap 21
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_chunked_summaries_equal_one_case_runs(model):
+    """The batched, chunked sweep gives the one-case path's results to 1e-12."""
+    study = Study.from_config(tiny())
+    combined = study.combine({m: [study.run_chunk(m, k) for k in range(study.n_chunks)] for m in study.models})
+    for case in range(study.n_cases):
+        point = study.point(case)
+        g = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": point["alpha21"], "alpha23": point["alpha21"],
+                                     "h2": point["h2"]})
+        t = step_times(Sine(0.2, 30.0, 0.3), 0.01)
+        h = models.run(model, g, Sine(0.2, 30.0, 0.3).displacement(t))
+        got = combined.sel(model=model, alpha21=point["alpha21"], h2=point["h2"])
+        assert float(got["theta2_end"]) == pytest.approx(np.degrees(h["q"][-1, 5]), abs=1e-12)
+        assert float(got["theta2_max_abs"]) == pytest.approx(np.degrees(np.abs(h["q"][:, 5]).max()), abs=1e-12)
+        rise = h["q"][:, 7] - g.Ry3_compatible(0.0)
+        assert float(got["rise_max"]) == pytest.approx(rise.max(), abs=1e-12)
+
+
+def test_failed_case_is_marked_and_others_complete():
+    """A pad shape with no stick-slip solution at this step size fails alone (NaN, flag, time)."""
+    geometry = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": np.array([10.0, 12.0]),
+                                        "alpha23": np.array([10.0, 12.0]), "h2": np.array([0.15, 0.10])})
+    t = step_times(Sine(0.27, 30.0, 1.0), 0.01)
+    Xg = Sine(0.27, 30.0, 1.0).displacement(t)
+    out = summarize("stick_slip", geometry, Xg, options=NewtonOptions(on_failure="mark"), times=t)
+    assert out["failed"].tolist() == [False, True]
+    assert np.isnan(out["theta2_max_abs"][1]) and np.isfinite(out["theta2_max_abs"][0])
+    assert out["failure_time"][1] == pytest.approx(0.16)
+    with pytest.raises(Exception, match="did not converge in sticking"):
+        summarize("stick_slip", geometry, Xg, times=t)  # the default policy stops
+
+
+BAD = [
+    (dict(colour="red"), r"unknown key\(s\) \['colour'\]"),
+    (dict(dt=None), r"missing key\(s\) \['dt'\]"),
+    (dict(dt=-0.01), "dt: must be > 0"),
+    (dict(dt="1e-3"), "dt: expected a number, got the string '1e-3'"),
+    (dict(sweep__h2=[]), "sweep.h2: the sweep axis is empty"),
+    (dict(sweep__h3=[1.0]), "sweep: unknown axis 'h3'"),
+    (dict(sweep__alpha23=[5.0]), "with symmetric: true, alpha23 follows alpha21"),
+    (dict(sweep__alpha21=[8.0, 25.0]), "sweep point alpha21=25.0, h2=0.12: geometry parameter 'alpha21'"),
+    (dict(sweep__alpha21={"start": 1, "stop": 2}), r"sweep.alpha21: missing key\(s\) \['num'\]"),
+    (dict(models=["pendulum"]), "models\\[0\\]: must be one of"),
+    (dict(chunk_size=0), "chunk_size: expected an integer >= 1"),
+    (dict(prototype="DFP9"), "prototype: unknown prototype 'DFP9'"),
+    (dict(histories=[{"alpha21": 10.0, "h9": 1}]), r"histories\[0\]: unknown key\(s\) \['h9'\]"),
+    (dict(excitation={"kind": "record", "file": "missing.AT2"}), "excitation.file: record file .*missing.AT2"),
+    (dict(on_failure="ignore"), "on_failure: must be one of"),
+]
+
+
+@pytest.mark.parametrize("changes, message", BAD, ids=[m[:40] for _, m in BAD])
+def test_invalid_study_names_key(changes, message, tmp_path):
+    with pytest.raises(CaseError, match=message):
+        Study.from_config(tiny(**changes), tmp_path)
+
+
+# --- the workflow -------------------------------------------------------------------------------
+def copy_project(dest: Path) -> Path:
+    for name in ("Snakefile", "config", "workflow", "profiles"):
+        src = ROOT / name
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, dest / name)
+    return dest
+
+
+def snakemake(cwd, *args, profile="profiles/default"):
+    return subprocess.run([sys.executable, "-m", "snakemake", "--profile", profile, *args], cwd=cwd,
+                          capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("name", ["pad_shape", "ground_motion"])
+def test_shipped_study_runs(name, tmp_path):
+    work = copy_project(tmp_path)
+    run = snakemake(work, "--configfile", f"config/studies/{name}.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    ds = xr.open_dataset(work / f"results/studies/{name}/{name}.nc")
+    for var in ("theta2_max_abs", "sticking_rotation_max", "rise_max", "rise_end", "theta2_end", "I_A_max",
+                "capacity_exceeded", "newton_iterations_max", "failed"):
+        assert var in ds and "units" in ds[var].attrs
+    assert (work / f"figures/studies/{name}/maps.png").stat().st_size > 20_000
+    assert (work / f"figures/studies/{name}/histories.png").exists()
+    if name == "pad_shape":
+        assert dict(ds.sizes) == {"model": 2, "alpha21": 25, "h2": 21}
+        dfp1 = ds.sel(model="stick_slip").sel(alpha21=10.0, h2=0.15, method="nearest")
+        assert int(dfp1["failed"]) == 0 and 5 < float(dfp1["sticking_rotation_max"]) < 40
+    else:
+        assert dict(ds.sizes) == {"model": 2, "prototype": 2, "scale": 3}
+        assert int(ds["failed"].sum()) == 0
+        assert (ds["theta2_max_abs"].diff("scale") > 0).all()  # a stronger record turns the pad more
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"sweep": {"h2": []}}, "sweep.h2"),
+    ({"dt": -0.01}, "dt"),
+    ({"colour": "red"}, "colour"),
+    ({"excitation": {"kind": "record", "file": "nope.AT2"}}, "nope.AT2"),
+    ({"sweep": {"alpha21": [8.0, 30.0]}}, "alpha21"),
+])
+def test_bad_study_fails_before_any_job(tmp_path, change, message):
+    work = copy_project(tmp_path)
+    (work / "bad.yaml").write_text(yaml.safe_dump({**TINY, **change}))
+    run = snakemake(work, "--configfile", "bad.yaml")
+    assert run.returncode != 0
+    assert message in run.stdout + run.stderr
+    assert not (work / "results").exists() and not (work / "logs").exists()
+
+
+def digest(root: Path):
+    return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(root.rglob("*.nc"))}
+
+
+def test_cluster_generic_profile_matches_local_run(tmp_path):
+    """Every job through a scheduler-style submit script: same files as a local run."""
+    results = {}
+    for profile in ("profiles/default", "profiles/cluster-local"):
+        work = tmp_path / profile.split("/")[-1]
+        work.mkdir()
+        copy_project(work)
+        (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
+        run = snakemake(work, "--configfile", "tiny.yaml", profile=profile)
+        assert run.returncode == 0, run.stderr[-3000:]
+        results[profile] = digest(work / "results/studies/tiny")
+    assert len(results["profiles/default"]) == 7  # 2 models x 2 chunks, the combined file, 2 histories
+    assert results["profiles/default"] == results["profiles/cluster-local"]
