@@ -12,11 +12,11 @@ import xarray as xr
 import yaml
 
 from dccss import models
+from dccss.case import CaseError
 from dccss.excitation import Sine, step_times
 from dccss.geometry import Geometry
 from dccss.newton import NewtonOptions
 from dccss.prototypes import TABLE1
-from dccss.case import CaseError
 from dccss.study import Study
 from dccss.sweep import summarize
 
