@@ -32,8 +32,10 @@ def write_atomic(path, write) -> None:
 
 
 def write_netcdf(ds, path) -> None:
-    """Write a dataset atomically (netCDF4 format)."""
-    write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
+    """Write a dataset atomically (netCDF4 format); coordinate variables carry no _FillValue
+    (CF 2.5.1)."""
+    encoding = {name: {"_FillValue": None} for name in ds.coords}
+    write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
 
 
 def write_text(text, path) -> None:

@@ -16,6 +16,10 @@ from .geometry import Geometry
 from .kinematics import CORNERS, all_corners, contact_angle, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
+#: CF requires a reference for time coordinates; t = 0 is the start of the imposed ground motion
+#: and the date is arbitrary. Read with ``dccss.results.load`` (or xarray's decode_times=False)
+#: to get seconds rather than dates.
+TIME_UNITS = "seconds since 1970-01-01 00:00:00"
 REFERENCE = (
     "Bianco, V.; Monti, G.; Belfiore, N.P. Advanced Multi-Body Modelling of DCCSS Isolators: "
     f"Geometrical Compatibility and Kinematics. Buildings 2021, 11, 50. https://doi.org/{DOI}"
@@ -43,6 +47,19 @@ def coordinates(q, dims, suffix="", when=""):
         data = np.degrees(q[..., k]) if angle else q[..., k]
         out[name + suffix] = _var(dims, data, "degree" if angle else "m", _COORD_LONG[name] + when)
     return out
+
+
+def time_coordinate(times):
+    """The CF time coordinate: seconds from the start of the ground motion (see TIME_UNITS)."""
+    return xr.Variable(("time",), np.asarray(times, dtype=float), {
+        "units": TIME_UNITS, "calendar": "standard", "units_metadata": "leap_seconds: none",
+        "standard_name": "time", "axis": "T",
+        "long_name": "time since the start of the imposed ground motion (the reference date is arbitrary)"})
+
+
+def load(path) -> xr.Dataset:
+    """Read a dccss netCDF file into memory, times as seconds (as the library made them)."""
+    return xr.load_dataset(path, decode_times=False)
 
 
 def geometry_attrs(geometry) -> dict:
@@ -113,12 +130,13 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
                                                "Newton-Raphson iterations of the sticking phase")
         data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
                                              "final max |constraint residual| of the sticking phase")
-    ds = xr.Dataset(data, coords={"time": _var(t, times, "s", "time", standard_name="time", axis="T")})
+    ds = xr.Dataset(data, coords={"time": time_coordinate(times)})
     ds.attrs = {
         "Conventions": "CF-1.11",
         "title": f"DCCSS kinematics, {MODEL_TITLES[model]} model",
         "source": f"dccss {__version__}, planar three-rigid-body kinematic model",
         "references": REFERENCE,
+        "history": f"computed by dccss {__version__} ({MODEL_TITLES[model]} model)",
         "model": model,
         "normals": normals,
         "theta2_0_deg": float(np.degrees(theta2_0)),

@@ -74,6 +74,7 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
     ds.attrs = {"Conventions": "CF-1.11",
                 "title": "DCCSS breakaway: interpenetration at the first compliant sliding step",
                 "source": f"dccss {__version__}", "references": REFERENCE, "model": "compliant",
+                "history": f"computed by dccss {__version__} (breakaway sweep)",
                 "normals": normals, "dccss_version": __version__, **geometry_attrs(geometry), **(attrs or {})}
     if steps.ndim == 0:
         ds = ds.isel(dXg=0)

@@ -326,6 +326,7 @@ class Study:
     def attrs(self, model) -> dict:
         out = {"Conventions": "CF-1.11", "title": f"dccss study {self.name}: {self.description}".strip(": "),
                "source": f"dccss {__version__}", "references": REFERENCE, "dccss_version": __version__,
+               "history": f"computed by dccss {__version__} (study {self.name})",
                "study": self.name, "normals": self.normals, "dt_s": self.dt, "theta2_0_deg": self.theta2_0,
                "symmetric": int(self.symmetric), "sweep_axes": " ".join(self.axes),
                **{f"prototype_{k}": float(v) for k, v in self.prototype.items()}, **self.excitation.attrs()}

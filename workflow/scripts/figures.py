@@ -2,12 +2,11 @@
 
 import contextlib
 
-import xarray as xr
-
 from dccss import plotting
+from dccss.results import load
 
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-    files = {f: xr.load_dataset(f) for f in snakemake.input}
+    files = {f: load(f) for f in snakemake.input}
     figures = snakemake.params.datasets
     for (fig, pairs), png, pdf in zip(figures.items(), snakemake.output.png, snakemake.output.pdf):
         datasets = {}

@@ -3,10 +3,9 @@
 import contextlib
 from pathlib import Path
 
-import xarray as xr
-
 from dccss import studyplots
 from dccss.plotting import save
+from dccss.results import load
 from dccss.study import Study
 
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
@@ -14,11 +13,11 @@ with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contex
     caption = f"study {study.name}: {study.description}"
     pngs = [f for f in snakemake.output if f.endswith(".png")]
     pdfs = [f for f in snakemake.output if f.endswith(".pdf")]
-    save(studyplots.maps(xr.load_dataset(snakemake.input.combined), study.marks, caption), pngs[0], pdfs[0])
+    save(studyplots.maps(load(snakemake.input.combined), study.marks, caption), pngs[0], pdfs[0])
     if study.histories:
         runs = []
         for path in snakemake.input.histories:
             model, i = Path(path).stem.rsplit("_", 1)
             point = ", ".join(f"{k} = {v}" for k, v in study.histories[int(i)].items())
-            runs.append((f"{point} ({model})", xr.load_dataset(path)))
+            runs.append((f"{point} ({model})", load(path)))
         save(studyplots.histories(runs, caption), pngs[1], pdfs[1])

@@ -2,18 +2,17 @@
 
 import contextlib
 
-import xarray as xr
-
 from dccss import validation
 from dccss.cli import write_text
+from dccss.results import load
 
 keys = snakemake.params.results
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
     cases = zip(keys["cases"], snakemake.input.cases)
     sweeps = zip(keys["breakaway"], snakemake.input.breakaway)
     results = validation.Results(
-        cases={(v, p, m, float(dt)): xr.load_dataset(f) for (v, p, m, dt), f in cases},
-        breakaway={(v, p): xr.load_dataset(f) for (v, p), f in sweeps},
+        cases={(v, p, m, float(dt)): load(f) for (v, p, m, dt), f in cases},
+        breakaway={(v, p): load(f) for (v, p), f in sweeps},
     )
     rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
                                snakemake.params.case_variants, snakemake.params.breakaway_variants)

@@ -1,0 +1,32 @@
+"""Shared fixtures: a full reproduction of the paper in a temporary copy of the project."""
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PROJECT = ["Snakefile", "config", "workflow", "profiles"]
+
+
+def copy_project(dest: Path) -> Path:
+    for name in PROJECT:
+        src = ROOT / name
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, dest / name)
+    return dest
+
+
+def snakemake(cwd, *args, profile="profiles/default"):
+    """Run the project's workflow in ``cwd``; the completed process (stdout, stderr, returncode)."""
+    return subprocess.run([sys.executable, "-m", "snakemake", "--profile", profile, *args],
+                          cwd=cwd, capture_output=True, text=True)
+
+
+@pytest.fixture(scope="session")
+def reproduction(tmp_path_factory):
+    work = copy_project(tmp_path_factory.mktemp("reproduction"))
+    run = snakemake(work)
+    assert run.returncode == 0, run.stderr[-3000:]
+    return work

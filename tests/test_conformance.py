@@ -1,0 +1,60 @@
+"""Every netCDF file the workflow writes passes the IOOS compliance checker (CF-1.11) with no
+error, and reads back in plain netCDF4 and in xarray with its names and units."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import netCDF4
+import pytest
+
+from dccss.results import TIME_UNITS, load
+
+CHECKER = Path(sys.executable).with_name("cchecker.py")
+
+
+def check(path: Path, out: Path) -> dict:
+    """The checker's findings for one file, by priority."""
+    subprocess.run([sys.executable, str(CHECKER), "-t", "cf:1.11", "-f", "json", "-o", str(out), str(path)],
+                   capture_output=True, text=True, timeout=300)
+    report = json.loads(out.read_text())["cf:1.11"]
+    return {level: [f"{item['name']}: {m}" for item in report.get(level, []) for m in item.get("msgs") or []]
+            for level in ("high_priorities", "medium_priorities", "low_priorities")}
+
+
+def test_every_file_passes_the_cf_checker(reproduction, tmp_path):
+    files = sorted((reproduction / "results").rglob("*.nc"))
+    assert len(files) == 20
+    for path in files:
+        findings = check(path, tmp_path / "report.json")
+        assert findings["high_priorities"] == [], (path.name, findings["high_priorities"])
+        assert findings["medium_priorities"] == [], (path.name, findings["medium_priorities"])
+
+
+def test_study_files_pass_the_cf_checker(tmp_path):
+    from conftest import copy_project, snakemake
+
+    work = copy_project(tmp_path)
+    assert snakemake(work, "--configfile", "config/studies/ground_motion.yaml").returncode == 0
+    files = sorted((work / "results/studies").rglob("*.nc"))
+    assert len(files) == 2 + 1 + 4  # chunks, the combined file, the histories
+    for path in files:
+        assert check(path, tmp_path / "report.json")["high_priorities"] == [], path.name
+
+
+@pytest.mark.parametrize("name", ["cases/as_reported/DFP2_stick_slip_dt0.01.nc", "breakaway/DFP1_unsigned.nc"])
+def test_files_read_back_with_names_and_units(reproduction, name):
+    path = reproduction / "results" / name
+    with netCDF4.Dataset(path) as nc:
+        assert nc.Conventions == "CF-1.11"
+        for var in nc.variables.values():
+            if var.dtype != str:
+                assert hasattr(var, "units") and hasattr(var, "long_name"), var.name
+    ds = load(path)
+    for var in ds.variables.values():
+        if var.dtype.kind in "fi":
+            assert "units" in var.attrs and "long_name" in var.attrs
+    if "time" in ds:
+        assert ds["time"].attrs["units"] == TIME_UNITS and ds["time"].dtype.kind == "f"  # seconds, not dates
+        assert ds["time"].values[0] == 0.0
