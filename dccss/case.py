@@ -16,6 +16,7 @@ Format (lengths in m, angles in degrees, times in s)::
     model: compliant       # or stick_slip
     normals: signed        # optional: signed (default) or unsigned
     newton: {tol: 1.0e-12, max_iter: 25}   # optional
+    capacity: continue     # optional: when the pad reaches a ring, continue (flagged), stop or error
     id: my-case            # optional, recorded in the dataset
 """
 
@@ -35,10 +36,10 @@ from .kinematics import NORMALS
 from .models import MODELS
 from .newton import NewtonOptions
 from .prototypes import TABLE1
-from .simulation import simulate
+from .simulation import CAPACITY_POLICIES, simulate
 
 REQUIRED = ("prototype", "excitation", "dt", "model")
-OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None}
+OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue"}
 GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
 EXCITATION_OPTIONAL = {"record": ("scale", "window", "baseline")}
@@ -151,13 +152,14 @@ class Case:
     options: NewtonOptions = field(default_factory=NewtonOptions)
     id: str | None = None
     parameters_hash: str | None = None
+    capacity: str = "continue"
 
     def run(self):
         """Simulate the case: an xarray.Dataset."""
         attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
-                        attrs=attrs)
+                        capacity=self.capacity, attrs=attrs)
 
 
 def newton_from(value, key="newton") -> NewtonOptions:
@@ -195,7 +197,8 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 model=choice(m["model"], "model", MODELS),
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
                 normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
-                parameters_hash=parameters_hash(mapping))
+                parameters_hash=parameters_hash(mapping),
+                capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES))
 
 
 def load_case(path) -> Case:

@@ -14,6 +14,7 @@ import numpy as np
 from ._version import __version__
 from .case import CaseError, load_case
 from .newton import ConvergenceError
+from .simulation import CapacityError
 
 
 def write_atomic(path, write) -> None:
@@ -69,6 +70,9 @@ def main(argv=None) -> int:
     except ConvergenceError as err:
         print(f"dccss: solver failure in {args.case}: {err}", file=sys.stderr)
         return 3
+    except CapacityError as err:
+        print(f"dccss: capacity exceeded in {args.case}: {err}", file=sys.stderr)
+        return 4
     write_netcdf(ds, args.output)
     if not args.quiet:
         print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s")

@@ -14,8 +14,16 @@ from .newton import NewtonOptions
 from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
 
 
+CAPACITY_POLICIES = ("continue", "stop", "error")
+
+
+class CapacityError(ValueError):
+    """The pad reached a retaining ring (the excitation exceeds the device capacity)."""
+
+
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
-             options: NewtonOptions = NewtonOptions(), attrs: dict | None = None) -> xr.Dataset:
+             options: NewtonOptions = NewtonOptions(), capacity="continue",
+             attrs: dict | None = None) -> xr.Dataset:
     """Run one case and return its dataset.
 
     Parameters
@@ -27,17 +35,35 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     theta2_0 : pad rotation at t_0 (rad); the start is the compatible configuration there.
     normals : 'signed' (consistent) or 'unsigned' (the authors' |alpha|).
     options : Newton-Raphson tolerance and iteration cap.
+    capacity : what to do when the pad reaches a retaining ring: 'continue' (flag it: the
+        ``capacity_exceeded`` variable and the ``capacity_exceeded_at_s`` attribute), 'stop' (the
+        dataset ends at that step, flagged) or 'error' (raise CapacityError).
     attrs : extra global attributes (e.g. a case id).
     """
     if model not in models.MODELS:
         raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
+    if capacity not in CAPACITY_POLICIES:
+        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     if np.ndim(geometry.L) != 0:
         raise ValueError("simulate runs one case: geometry fields must be scalars")
     times = step_times(excitation, dt)
     history = models.run(model, geometry, excitation.displacement(times), theta2_0,
                          normals=normals, options=options, times=times)
-    return history_dataset(model, history, geometry, times, excitation, theta2_0=theta2_0, dt=dt,
-                           normals=normals, tol=options.tol, attrs=attrs)
+    ds = history_dataset(model, history, geometry, times, excitation, theta2_0=theta2_0, dt=dt,
+                         normals=normals, tol=options.tol, attrs=attrs)
+    exceeded = np.flatnonzero(ds["capacity_exceeded"].values)
+    if exceeded.size:
+        n = int(exceeded[0])
+        t = float(times[n])
+        plate = "RB1" if ds["clearance_1"].values[n] < 0 else "RB3"
+        if capacity == "error":
+            raise CapacityError(f"the pad reaches the retaining ring of {plate} at t = {t:.6g} s (step {n}): the "
+                                f"excitation exceeds the device capacity (R1 sin(alpha1 - alpha21) = "
+                                f"{geometry.capacity1:.4g} m); lower the amplitude or set capacity: continue")
+        ds.attrs.update(capacity_exceeded_at_s=t, capacity_exceeded_plate=plate)
+        if capacity == "stop":
+            ds = ds.isel(time=slice(0, n + 1)).assign_attrs(capacity_policy="stopped at the exceedance")
+    return ds
 
 
 def breakaway(geometry, theta2_0, dXg, *, normals="signed",

@@ -26,6 +26,7 @@ SUMMARIES = {
     **{f"I_{c}_max": ("m", f"largest interpenetration at corner {c}2 (positive into the plate)") for c in CORNERS},
     "clearance_min": ("m", "smallest clearance between the pad and a retaining ring"),
     "capacity_exceeded": ("1", "pad beyond a retaining ring at some step"),
+    "capacity_time": ("s", "time at which the pad first reaches a retaining ring (NaN if it does not)"),
     "newton_iterations_max": ("1", "most Newton-Raphson iterations in a step"),
     "newton_iterations_mean": ("1", "mean Newton-Raphson iterations per step"),
     "sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, |theta2_stick - theta2(t_n-1)|"),
@@ -60,13 +61,14 @@ def summarize(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
 def _summarize(model, geometry, Xg, theta2_0, shape, **kw):
     rest = geometry.Ry3_compatible(0.0)
     times = kw.get("times")
-    acc, previous, failure = None, None, np.full(shape, np.nan)
+    acc, previous, failure, reached = None, None, np.full(shape, np.nan), np.full(shape, np.nan)
     for step in models.steps(model, geometry, Xg, theta2_0, **kw):
         q = step["q"]
         now = times[step["n"]] if times is not None else step["n"]
         failure = np.where(np.isnan(failure) & np.isnan(q).any(axis=-1), now, failure)
         theta2, rise = np.degrees(q[..., 5]), q[..., 7] - rest
         interp, gap = corner_diagnostics(q, geometry, step.get("local"))
+        reached = np.where(np.isnan(reached) & (gap.min(axis=-1) < 0), now, reached)
         its = np.asarray(step["newton_iterations"]) + np.asarray(step.get("newton_iterations_stick", 0))
         current = {"theta2_max_abs": np.abs(theta2), "rise_max": rise, "I_max": interp,
                    "clearance_min": gap.min(axis=-1), "newton_iterations_max": its, "iterations": its}
@@ -89,4 +91,4 @@ def _summarize(model, geometry, Xg, theta2_0, shape, **kw):
     out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
            for k, v in out.items()}
     out["capacity_exceeded"] = np.where(failed, False, out["capacity_exceeded"])
-    return out | {"failed": failed, "failure_time": failure}
+    return out | {"failed": failed, "failure_time": failure, "capacity_time": np.where(failed, np.nan, reached)}
