@@ -158,22 +158,25 @@ def _collect(steps, complex_keys=()) -> dict:
     return out
 
 
+def collect(steps) -> dict:
+    """A history from per-step dicts (of ``compliant_steps`` or ``stick_slip_steps``), plus ``Rx3``."""
+    out = _collect(steps, complex_keys=("point", "normal", "local"))
+    out["Rx3"] = out["q"][0, ..., RB3]
+    return out
+
+
 def compliant(geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """Compliant sliding history: arrays ``q`` (T, ..., 9); ``point``, ``normal`` (T, ..., 4)
     complex; ``newton_iterations``, ``residual`` (T, ...); ``Rx3`` the guided abscissa of RB3.
     Keywords as for ``compliant_steps``."""
-    out = _collect(compliant_steps(geometry, Xg, theta2_0, **kw), complex_keys=("point", "normal", "local"))
-    out["Rx3"] = out["q"][0, ..., RB3]
-    return out
+    return collect(compliant_steps(geometry, Xg, theta2_0, **kw))
 
 
 def stick_slip(geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """Stick-slip history: arrays ``q``, ``q_stick`` (T, ..., 9), ``diagonal_BC``,
     ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
     Keywords as for ``stick_slip_steps``."""
-    out = _collect(stick_slip_steps(geometry, Xg, theta2_0, **kw))
-    out["Rx3"] = out["q"][0, ..., RB3]
-    return out
+    return collect(stick_slip_steps(geometry, Xg, theta2_0, **kw))
 
 
 def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:

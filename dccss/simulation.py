@@ -9,7 +9,7 @@ from . import models
 from ._version import __version__
 from .constraints import Compliant
 from .excitation import step_times
-from .kinematics import CORNERS, all_corners, interpenetration
+from .kinematics import CORNERS, all_corners, corner_diagnostics, interpenetration
 from .newton import NewtonOptions
 from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
 
@@ -47,10 +47,14 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if np.ndim(geometry.L) != 0:
         raise ValueError("simulate runs one case: geometry fields must be scalars")
     times = step_times(excitation, dt)
-    history = models.run(model, geometry, excitation.displacement(times), theta2_0,
-                         normals=normals, options=options, times=times)
-    ds = history_dataset(model, history, geometry, times, excitation, theta2_0=theta2_0, dt=dt,
-                         normals=normals, tol=options.tol, attrs=attrs)
+    steps = []
+    for step in models.steps(model, geometry, excitation.displacement(times), theta2_0, normals=normals,
+                             options=options, times=times):
+        steps.append(step)
+        if capacity != "continue" and (corner_diagnostics(step["q"], geometry)[1] < 0).any():
+            break  # the pad reaches a ring: stop here (or fail below) before solving further
+    ds = history_dataset(model, models.collect(steps), geometry, times[:len(steps)], excitation,
+                         theta2_0=theta2_0, dt=dt, normals=normals, tol=options.tol, attrs=attrs)
     exceeded = np.flatnonzero(ds["capacity_exceeded"].values)
     if exceeded.size:
         n = int(exceeded[0])
@@ -62,7 +66,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                                 f"{geometry.capacity1:.4g} m); lower the amplitude or set capacity: continue")
         ds.attrs.update(capacity_exceeded_at_s=t, capacity_exceeded_plate=plate)
         if capacity == "stop":
-            ds = ds.isel(time=slice(0, n + 1)).assign_attrs(capacity_policy="stopped at the exceedance")
+            ds.attrs["capacity_policy"] = "stopped at the exceedance"
     return ds
 
 

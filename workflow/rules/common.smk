@@ -1,5 +1,35 @@
 # Paths and parameters derived from the configuration (no computation here).
+from snakemake.exceptions import WorkflowError
+
+from dccss.case import CaseError, geometry_from
 from dccss.plotting import FIGURES
+
+
+def check_config():
+    """What the schema cannot say: names that refer to each other, and each device's geometry."""
+    for name, params in config["prototypes"].items():
+        try:
+            geometry_from(params, f"prototypes.{name}")
+        except CaseError as err:
+            raise WorkflowError(f"config: {err}") from None
+    for case_set, spec in config["case_sets"].items():
+        for proto in spec["cases"]:
+            if proto not in config["prototypes"]:
+                raise WorkflowError(f"config: case_sets.{case_set}.cases: unknown prototype {proto!r}; "
+                                    f"defined: {sorted(config['prototypes'])}")
+    figures = config.get("figures", {})
+    if "case_set" in figures and figures["case_set"] not in config["case_sets"]:
+        raise WorkflowError(f"config: figures.case_set: unknown case set {figures['case_set']!r}; "
+                            f"defined: {sorted(config['case_sets'])}")
+    normals = (config.get("breakaway") or {}).get("normals", [])
+    if "breakaway_normals" in figures and figures["breakaway_normals"] not in normals:
+        raise WorkflowError(f"config: figures.breakaway_normals: {figures['breakaway_normals']!r} is not among "
+                            f"breakaway.normals {normals}")
+    if config["duration"] < max(config["dt"]):
+        raise WorkflowError(f"config: dt: {max(config['dt'])} s is larger than the duration {config['duration']} s")
+
+
+check_config()
 
 
 def dt_label(dt):
