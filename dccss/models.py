@@ -46,7 +46,7 @@ def _start(geometry, Xg, theta2_0):
 def _wrapped(q):
     """q with theta2 in (-pi, pi]: Newton may land on theta2 + 2 pi k, the same configuration."""
     theta2 = q[..., 5]
-    if np.all(np.abs(theta2) <= np.pi):
+    if (abs(float(theta2)) <= np.pi) if q.ndim == 1 else bool(np.all(np.abs(theta2) <= np.pi)):
         return q
     q = q.copy()
     q[..., 5] = theta2 - 2 * np.pi * np.round(theta2 / (2 * np.pi))

@@ -13,7 +13,6 @@ from .kinematics import CORNERS, all_corners, corner_diagnostics, interpenetrati
 from .newton import NewtonOptions
 from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
 
-
 CAPACITY_POLICIES = ("continue", "stop", "error")
 
 
