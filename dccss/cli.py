@@ -3,45 +3,16 @@
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
 from ._version import __version__
 from .case import CaseError, load_case
+from .files import write_netcdf
 from .newton import ConvergenceError
 from .simulation import CapacityError
-
-
-def write_atomic(path, write) -> None:
-    """Call write(temporary path) in the target's folder, then rename onto ``path``: readers and
-    interrupted runs never see a half-written file."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def write_netcdf(ds, path) -> None:
-    """Write a dataset atomically (netCDF4 format); coordinate variables carry no _FillValue
-    (CF 2.5.1)."""
-    encoding = {name: {"_FillValue": None} for name in ds.coords}
-    write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
-
-
-def write_text(text, path) -> None:
-    """Write a text file atomically."""
-    write_atomic(path, lambda tmp: Path(tmp).write_text(text))
 
 
 def _summary(ds) -> str:

@@ -12,12 +12,9 @@ Typical use::
 
 from __future__ import annotations
 
-import os
-import secrets
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
-from pathlib import Path
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -26,6 +23,7 @@ from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
 
 from .constraints import Q_NAMES
+from .files import write_atomic
 from .kinematics import CORNERS
 from .results import geometry_from_attrs
 
@@ -473,21 +471,7 @@ def render(fig_id: str, datasets: dict, caption: str) -> Figure:
     return spec.draw({key: datasets[key] for key in spec.keys}, caption)
 
 
-def _atomic(path, write):
-    """Write through ``write(file)`` to a temporary file in the same folder, then rename it."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")  # created honouring umask
-    try:
-        with open(tmp, "xb") as f:
-            write(f)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def save(fig: Figure, png_path, pdf_path) -> None:
     """Write ``fig`` as PNG (150 dpi) and PDF, atomically and with reproducible bytes."""
-    _atomic(png_path, lambda f: fig.savefig(f, format="png", dpi=DPI, metadata=PNG_METADATA))
-    _atomic(pdf_path, lambda f: fig.savefig(f, format="pdf", metadata=PDF_METADATA))
+    write_atomic(png_path, lambda f: fig.savefig(f, format="png", dpi=DPI, metadata=PNG_METADATA))
+    write_atomic(pdf_path, lambda f: fig.savefig(f, format="pdf", metadata=PDF_METADATA))

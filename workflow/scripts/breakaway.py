@@ -6,7 +6,7 @@ import numpy as np
 
 from dccss import NewtonOptions, breakaway
 from dccss.case import geometry_from, parameters_hash
-from dccss.cli import write_netcdf
+from dccss.files import write_netcdf
 
 sweep = snakemake.params.sweep
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):

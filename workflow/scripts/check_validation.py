@@ -4,6 +4,8 @@ import json
 import sys
 from pathlib import Path
 
+from dccss.files import write_text
+
 rows = json.loads(Path(snakemake.input[0]).read_text())
 failing = [r for r in rows if not r["ok"]]
 with open(snakemake.log[0], "w") as log:
@@ -15,4 +17,4 @@ with open(snakemake.log[0], "w") as log:
     if failing:
         sys.exit(f"validation failed: {len(failing)} stated number(s) expected to reproduce did not; "
                  "see figures/validation.md")
-    Path(snakemake.output[0]).write_text(f"{len(rows)} checks, all expected reproductions hold\n")
+    write_text(f"{len(rows)} checks, all expected reproductions hold\n", snakemake.output[0])

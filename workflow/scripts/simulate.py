@@ -3,7 +3,7 @@
 import contextlib
 
 from dccss.case import case_from
-from dccss.cli import write_netcdf
+from dccss.files import write_netcdf
 
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
     ds = case_from(snakemake.params.case).run()

@@ -3,7 +3,7 @@
 import contextlib
 from pathlib import Path
 
-from dccss.cli import write_netcdf
+from dccss.files import write_netcdf
 from dccss.results import load
 from dccss.study import Study
 

@@ -3,7 +3,7 @@
 import contextlib
 from pathlib import Path
 
-from dccss.cli import write_netcdf
+from dccss.files import write_netcdf
 from dccss.study import Study
 
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):

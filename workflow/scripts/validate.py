@@ -3,7 +3,7 @@
 import contextlib
 
 from dccss import validation
-from dccss.cli import write_text
+from dccss.files import write_text
 from dccss.results import load
 
 keys = snakemake.params.results
