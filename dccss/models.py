@@ -53,6 +53,16 @@ def _wrapped(q):
     return q
 
 
+#: polynomial extrapolation weights from the last 1, 2, 3, 4 steps (oldest first)
+_PREDICTOR = {1: (1,), 2: (-1, 2), 3: (1, -3, 3), 4: (-1, 4, -6, 4)}
+
+
+def _extrapolate(history):
+    """Initial guess for the next step: the cubic through the last four converged steps (lower
+    orders at the start). Newton's iterates from it converge to the same solution."""
+    return sum(w * q for w, q in zip(_PREDICTOR[len(history)], history))
+
+
 def _context(n, times, phase):
     ctx = {"step": n, "phase": phase}
     if times is not None:
@@ -73,14 +83,14 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
     points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
     yield {"n": 0, "q": q, "local": locals_, "point": points, "normal": normals_, "newton_iterations": 0,
            "residual": 0.0}
-    before = None
+    history = [q]  # the last converged configurations, newest last, for the predictor
     for n in range(1, len(Xg)):
         cset = Compliant(corners, Xg[n], Rx3, points, normals_)
-        guess = 2 * q - before if before is not None else q  # linear predictor
-        result = newton.solve(cset, guess, options, _context(n, times, cset.phase))
+        result = newton.solve(cset, _extrapolate(history), options, _context(n, times, cset.phase))
         step = {"n": n, "q": _wrapped(result.q), "point": points, "normal": normals_,
                 "newton_iterations": result.iterations, "residual": result.residual}
-        before, q = q, step["q"]
+        q = step["q"]
+        history = history[-3:] + [q]
         F = frames(q)  # the next step's contact data
         locals_ = [local(F, c) for c in corners]
         points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
