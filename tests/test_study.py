@@ -138,10 +138,12 @@ def test_shipped_study_runs(name, tmp_path):
     ({"dt": -0.01}, "dt"),
     ({"colour": "red"}, "colour"),
     ({"excitation": {"kind": "record", "file": "nope.AT2"}}, "nope.AT2"),
+    ({"excitation": {"kind": "record", "file": "bad.AT2"}}, "bad.AT2"),
     ({"sweep": {"alpha21": [8.0, 30.0]}}, "alpha21"),
 ])
 def test_bad_study_fails_before_any_job(tmp_path, change, message):
     work = copy_project(tmp_path)
+    (work / "bad.AT2").write_text("PEER\nx\nACCELERATION IN G\nNPTS=   3, DT=  .0100 SEC\n .1E-01 nan .1E-01\n")
     (work / "bad.yaml").write_text(yaml.safe_dump({**TINY, **change}))
     run = snakemake(work, "--configfile", "bad.yaml")
     assert run.returncode != 0
