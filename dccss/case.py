@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from .checks import CaseError, check_keys, choice, number
 from .excitation import Sine, Table
 from .geometry import Geometry
 from .kinematics import NORMALS
@@ -43,48 +44,6 @@ OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "c
 GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
 EXCITATION_OPTIONAL = {"record": ("scale", "window", "baseline")}
-
-
-class CaseError(ValueError):
-    """A case file or mapping is invalid; the message names the key."""
-
-
-def number(value, key, *, positive=False):
-    """A finite real number from a YAML value; the error names the key."""
-    if isinstance(value, str):
-        hint = ""
-        try:
-            float(value)
-            hint = " (YAML reads exponents without a decimal point, e.g. 1e-3, as strings: write 1.0e-3)"
-        except ValueError:
-            pass
-        raise CaseError(f"{key}: expected a number, got the string {value!r}{hint}")
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise CaseError(f"{key}: expected a number, got {type(value).__name__} {value!r}")
-    value = float(value)
-    if not np.isfinite(value):
-        raise CaseError(f"{key}: expected a finite number, got {value!r}")
-    if positive and value <= 0:
-        raise CaseError(f"{key}: must be > 0, got {value!r}")
-    return value
-
-
-def choice(value, key, allowed):
-    if not isinstance(value, str) or value not in allowed:
-        raise CaseError(f"{key}: must be one of {list(allowed)}, got {value!r}")
-    return value
-
-
-def check_keys(mapping, key, required, optional=()):
-    if not isinstance(mapping, dict):
-        raise CaseError(f"{key}: expected a mapping, got {type(mapping).__name__} {mapping!r}")
-    unknown = sorted(set(mapping) - set(required) - set(optional), key=str)
-    if unknown:
-        allowed = sorted(set(required) | set(optional))
-        raise CaseError(f"{key}: unknown key(s) {unknown}; allowed: {allowed}")
-    missing = [k for k in required if k not in mapping]
-    if missing:
-        raise CaseError(f"{key}: missing key(s) {missing}")
 
 
 def geometry_from(value, key="prototype") -> Geometry:

@@ -7,16 +7,11 @@ from pathlib import Path
 
 import numpy as np
 
+from .checks import number
+
 
 def _number(name, value, *, positive=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValueError(f"excitation {name!r} must be a number, got {value!r}")
-    value = float(value)
-    if not np.isfinite(value):
-        raise ValueError(f"excitation {name!r} must be finite, got {value!r}")
-    if positive and value <= 0:
-        raise ValueError(f"excitation {name!r} must be > 0, got {value!r}")
-    return value
+    return number(value, f"excitation.{name}", positive=positive)
 
 
 @dataclass(frozen=True)
@@ -124,7 +119,7 @@ class Table:
 
 def step_times(excitation, dt) -> np.ndarray:
     """t_n = t_start + n dt, n = 0..N, the last step ending at or before t_end."""
-    dt = _number("dt", dt, positive=True)
+    dt = number(dt, "dt", positive=True)
     span = excitation.t_end - excitation.t_start
     if dt > span * (1 + 1e-12):
         raise ValueError(f"dt = {dt!r} s is larger than the excitation's duration {span!r} s")

@@ -35,7 +35,8 @@ import numpy as np
 import xarray as xr
 
 from ._version import __version__
-from .case import Case, CaseError, case_from, check_keys, choice, excitation_from, geometry_from, newton_from, number
+from .case import Case, case_from, excitation_from, geometry_from, newton_from
+from .checks import CaseError, check_keys, choice, number
 from .geometry import ANGLES, Geometry
 from .kinematics import NORMALS
 from .models import MODELS

@@ -32,7 +32,7 @@ def test_step_times_cover_duration_exactly():
 def test_step_times_reject_bad_dt():
     with pytest.raises(ValueError, match="larger than the excitation's duration"):
         step_times(Sine(0.1, 30.0, 1.0), 2.0)
-    with pytest.raises(ValueError, match="'dt' must be > 0"):
+    with pytest.raises(ValueError, match="dt: must be > 0"):
         step_times(Sine(0.1, 30.0, 1.0), 0.0)
 
 
@@ -69,7 +69,7 @@ def test_missing_table_file(tmp_path):
 
 
 def test_sine_rejects_bad_values():
-    with pytest.raises(ValueError, match="'duration' must be > 0"):
+    with pytest.raises(ValueError, match="excitation.duration: must be > 0"):
         Sine(0.1, 30.0, -1.0)
-    with pytest.raises(ValueError, match="'amplitude' must be a number"):
+    with pytest.raises(ValueError, match="excitation.amplitude: expected a number"):
         Sine("0.1", 30.0, 1.0)
