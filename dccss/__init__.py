@@ -15,9 +15,10 @@ Typical use::
 
 Modules: ``geometry`` (Table 1 parameters, derived lengths), ``kinematics`` (bodies, corners,
 contact points), ``constraints`` (the constraint sets and their Jacobians), ``newton`` (the
-solver), ``models`` (time steppers), ``excitation`` (X_g(t)), ``records`` (recorded accelerations),
-``sweep`` (batched runs reduced to summaries), ``results`` (datasets),
-``simulation`` (one case in, one dataset out), ``case`` and ``cli`` (case files, ``dccss run``).
+solver), ``models`` (time steppers), ``excitation`` and ``records`` (X_g(t)), ``results``
+(datasets), ``simulation`` (one case in, one dataset out), ``sweep`` and ``study`` (batched
+sweeps, study files), ``checks``, ``case`` and ``cli`` (input checks, case files, ``dccss run``),
+``files`` (atomic writes), ``plotting``, ``studyplots`` and ``validation``.
 """
 
 import importlib
