@@ -61,12 +61,16 @@ def all_breakaway():
     return [breakaway_path(proto, normals) for proto in config["prototypes"] for normals in spec["normals"]]
 
 
-def case_mapping(wildcards):
-    """The dccss case mapping of one simulation (see dccss.case)."""
+def case_mappings(wildcards):
+    """The dccss case mappings (see dccss.case) of a case set, prototype and model, one per dt."""
+    return [case_mapping(wildcards, dt) for dt in config["dt"]]
+
+
+def case_mapping(wildcards, dt):
+    """The dccss case mapping of one simulation."""
     spec = config["case_sets"][wildcards.case_set]["cases"][wildcards.proto]
-    dt = next(d for d in config["dt"] if dt_label(d) == wildcards.dt)
     case = {
-        "id": f"{wildcards.case_set}/{wildcards.proto}_{wildcards.model}_dt{wildcards.dt}",
+        "id": f"{wildcards.case_set}/{wildcards.proto}_{wildcards.model}_dt{dt_label(dt)}",
         "prototype": config["prototypes"][wildcards.proto],
         "excitation": {"kind": "sine", "amplitude": spec["amplitude"], "omega": config["omega"],
                        "duration": config["duration"]},

@@ -3,16 +3,17 @@ wildcard_constraints:
     proto="[A-Za-z][A-Za-z0-9-]*",
     model="compliant|stick_slip",
     normals="signed|unsigned",
-    dt="[0-9.e-]+",
 
 
+# one job per (case set, prototype, model) writes one file per time step: every figure and check
+# reads both, so this costs no extra reruns and saves a process start per case
 rule simulate:
     output:
-        "results/cases/{case_set}/{proto}_{model}_dt{dt}.nc",
+        [f"results/cases/{{case_set}}/{{proto}}_{{model}}_dt{dt_label(dt)}.nc" for dt in config["dt"]],
     params:
-        case=case_mapping,
+        cases=case_mappings,
     log:
-        "logs/simulate/{case_set}/{proto}_{model}_dt{dt}.log",
+        "logs/simulate/{case_set}/{proto}_{model}.log",
     conda:
         "../envs/dccss.yaml"
     script:

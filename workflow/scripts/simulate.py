@@ -1,4 +1,4 @@
-"""Snakemake adapter: one case mapping -> one netCDF dataset."""
+"""Snakemake adapter: the case mappings of one rule job -> one netCDF dataset each."""
 
 import contextlib
 
@@ -6,6 +6,7 @@ from dccss.case import case_from
 from dccss.files import write_netcdf
 
 with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-    ds = case_from(snakemake.params.case).run()
-    write_netcdf(ds, snakemake.output[0])
-    print(f"{snakemake.params.case['id']}: {ds.sizes['time']} steps")
+    for case, path in zip(snakemake.params.cases, snakemake.output):
+        ds = case_from(case).run()
+        write_netcdf(ds, path)
+        print(f"{case['id']}: {ds.sizes['time']} steps -> {path}")
