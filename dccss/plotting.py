@@ -219,8 +219,9 @@ def _fig07(datasets, caption):
         tw = _twin(ax, "0.3", r"$|\mathbf{C_q}|$ (m)")
         tw.plot(th, ds["det_Cq"].values, color="0.3", ls=":", lw=1.4, marker=".", ms=4, label=r"$|\mathbf{C_q}|$")
         ax.set_title(f"({'abcd'[k]}) {proto}, ΔX$_g(t_1)$ = {100 * dX:g} cm", loc="left")
-        _legend(ax, tw, ncols=5, loc="upper center")
         ax.margins(y=0.15)
+        _headroom(ax, tw)  # keep the legend clear of both curves
+        _legend(ax, tw, ncols=5, loc="upper center")
     return _finish(fig, "fig07", caption)
 
 
