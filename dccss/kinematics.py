@@ -22,11 +22,6 @@ NORMALS = ("signed", "unsigned")
 _CORNER_DEF = {"A": (RB1, -1.0), "B": (RB1, 1.0), "C": (RB3, -1.0), "D": (RB3, 1.0)}
 
 
-def expi(theta):
-    """e^{i theta} for a scalar or an array."""
-    return cmath.exp(1j * theta) if np.ndim(theta) == 0 else np.exp(1j * theta)
-
-
 def dot(a, b):
     """Scalar product of planar vectors given as complex numbers, Re(a conj(b))."""
     return a.real * b.real + a.imag * b.imag
