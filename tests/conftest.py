@@ -1,11 +1,30 @@
 """Shared fixtures: a full reproduction of the paper in a temporary copy of the project."""
 
+import copy
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+#: a value for ``changed`` that removes the key
+DELETE = object()
+
+
+def changed(mapping, **changes):
+    """A deep copy of ``mapping`` with ``a__b=value`` setting mapping["a"]["b"] (DELETE removes it)."""
+    out = copy.deepcopy(mapping)
+    for key, value in changes.items():
+        *path, last = key.split("__")
+        target = out
+        for part in path:
+            target = target[part]
+        if value is DELETE:
+            del target[last]
+        else:
+            target[last] = value
+    return out
 
 ROOT = Path(__file__).resolve().parents[1]
 PROJECT = ["Snakefile", "config", "workflow", "profiles"]

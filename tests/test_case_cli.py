@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
+from conftest import DELETE, changed
 
 from dccss.case import CaseError, case_from, load_case
 from dccss.cli import main
@@ -74,20 +75,7 @@ def test_prototype_by_name_and_table_excitation(tmp_path):
 
 
 def mutate(**changes):
-    case = {k: (dict(v) if isinstance(v, dict) else v) for k, v in CASE.items()}
-    for key, value in changes.items():
-        parts = key.split("__")
-        target = case
-        for p in parts[:-1]:
-            target = target[p]
-        if value is DELETE:
-            del target[parts[-1]]
-        else:
-            target[parts[-1]] = value
-    return case
-
-
-DELETE = object()
+    return changed(CASE, **changes)
 BAD = [
     (dict(colour="red"), r"case: unknown key\(s\) \['colour'\]"),
     (dict(model=DELETE), r"case: missing key\(s\) \['model'\]"),

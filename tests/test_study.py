@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
-from conftest import copy_project, snakemake
+from conftest import DELETE, changed, copy_project, snakemake
 
 from dccss import models
 from dccss.case import CaseError
@@ -32,16 +32,7 @@ TINY = {
 
 
 def tiny(**changes):
-    config = yaml.safe_load(yaml.safe_dump(TINY))
-    for key, value in changes.items():
-        target, parts = config, key.split("__")
-        for p in parts[:-1]:
-            target = target[p]
-        if value is None:
-            del target[parts[-1]]
-        else:
-            target[parts[-1]] = value
-    return config
+    return changed(TINY, **{k: DELETE if v is None else v for k, v in changes.items()})
 
 
 def test_grid_and_chunks_cover_every_case_once():
