@@ -18,7 +18,7 @@ from .simulation import CapacityError
 def _summary(ds) -> str:
     theta2 = ds["theta2"].values
     interp = max(float(np.nanmax(np.abs(ds[f"I_{c}"].values))) for c in "ABCD")
-    return (f"{ds.attrs['model']}, {ds.sizes['time'] - 1} steps: max |theta2| = "
+    return (f"{ds.attrs['model']}, {ds.sizes['t'] - 1} steps: max |theta2| = "
             f"{np.nanmax(np.abs(theta2)):.3f} deg, max rise = {100 * float(ds['rise'].max()):.3f} cm, "
             f"max |interpenetration| = {1e3 * interp:.4g} mm")
 

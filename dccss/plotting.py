@@ -252,7 +252,7 @@ def _fig09(datasets, caption):
     fig, axes = _figure((14, 7.5), 2, 4, sharex=True)
     for k, key in enumerate(FIGURES["fig09"].keys):
         ds = datasets[key]
-        t = ds["time"].values
+        t = ds["t"].values
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
         for row, pair in enumerate(("AD", "BC")):
             _corners(axes[row, k], t, ds, pair, factor, unit,
@@ -266,7 +266,7 @@ def _fig10(datasets, caption):
     fig, axes = _figure((12, 7), 2, 2, sharex=True)
     for k, key in enumerate(FIGURES["fig10"].keys):
         ds = datasets[key]
-        t = ds["time"].values
+        t = ds["t"].values
         for row, (a, b) in enumerate((("A", "B"), ("D", "C"))):
             ax, diff = axes[row, k], 1e6 * (ds[f"I_{a}"] - ds[f"I_{b}"]).values
             ax.plot(t, diff, color=CORNER_STYLE[a]["color"], lw=1.4, label=f"{I_LABEL[a]} − {I_LABEL[b]}")
@@ -299,7 +299,7 @@ def _overview(fig_id, datasets, caption):
     ds = datasets[key]
     g = geometry_from_attrs(ds.attrs)
     shapes = _shapes(g)
-    t = ds["time"].values
+    t = ds["t"].values
     fig, axes = _figure((13, 8.6), 2, 2, height_ratios=(1, 0.95))
     ax = axes[0, 0]
     ax.plot(t, 100 * ds["Xg"].values, color="k", lw=1.6, label="$X_g$")
@@ -321,7 +321,7 @@ def _overview(fig_id, datasets, caption):
         ax.set_xlabel("t (s)")
     points = []
     for k, (n, name) in enumerate(((0, "initial"), (-1, "final"))):
-        ax, q = axes[1, k], _q(ds.isel(time=n))
+        ax, q = axes[1, k], _q(ds.isel(t=n))
         points.append(_device(ax, g, q, shapes, corners=True))
         ax.set_title(f"({'cd'[k]}) {name} configuration, t = {t[n]:.2f} s: $X_g$ = {100 * q['Rx1']:.1f} cm, "
                      f"$\\theta^2$ = {q['theta2']:.2f}°, rise = {100 * float(ds['rise'][n]):.2f} cm",
@@ -336,7 +336,7 @@ def _fig17(datasets, caption):
     for k, key in enumerate(FIGURES["fig17"].keys):
         ds, ax = datasets[key], axes[k // 2, k % 2]
         factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
-        _corners(ax, ds["time"].values, ds, CORNERS, factor, unit)
+        _corners(ax, ds["t"].values, ds, CORNERS, factor, unit)
         ax.set_title(f"({'abcd'[k]}) {_case_label(key)}", loc="left")
     for ax in axes[1]:
         ax.set_xlabel("t (s)")
@@ -356,7 +356,7 @@ def _sticking(fig_id, t_zoom, datasets, caption):
     """Figs. 18, 19: theta2 and R_y^3 at the end of each step and of each sticking phase."""
     key = FIGURES[fig_id].keys[0]
     ds = datasets[key]
-    t = ds["time"].values
+    t = ds["t"].values
     mid = 0.5 * (t[1:] + t[:-1])
     rest = ds["Ry3"].values - ds["rise"].values
     series = {"theta2": (ds["theta2"].values, ds["theta2_stick"].values, r"$\theta^2$ (°)"),
@@ -405,9 +405,9 @@ def _fig20(datasets, caption):
         ds, ax = datasets[key], axes[0, k]
         g = geometry_from_attrs(ds.attrs)
         shapes = _shapes(g)
-        n = max(1, int(np.abs(ds["time"].values - t_target).argmin()))
-        now = ds.isel(time=n)
-        configs = ((_q(ds.isel(time=n - 1)), "(1) start of step"), (_q(now, "_stick"), "(2) end of sticking"),
+        n = max(1, int(np.abs(ds["t"].values - t_target).argmin()))
+        now = ds.isel(t=n)
+        configs = ((_q(ds.isel(t=n - 1)), "(1) start of step"), (_q(now, "_stick"), "(2) end of sticking"),
                    (_q(now), "(3) end of slipping"))
         points = []
         for (q, name), (colour, ls) in zip(configs, styles):
@@ -416,7 +416,7 @@ def _fig20(datasets, caption):
                                   corners=name.startswith("(2)")))
         _frame(ax, np.vstack(points))
         diagonal = ("$A^2D^2$", "$B^2C^2$")[int(now["sticking_diagonal"])]
-        ax.set_title(f"({'ab'[k]}) {_case_label(key)}, step ending at t = {float(now['time']):.3f} s,\n"
+        ax.set_title(f"({'ab'[k]}) {_case_label(key)}, step ending at t = {float(now['t']):.3f} s,\n"
                      f"$\\dot X_g$ = {100 * float(now['Xg_dot']):.2f} cm/s, sticking diagonal {diagonal}", loc="left")
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), handlelength=3.5)
     return _finish(fig, "fig20", caption)

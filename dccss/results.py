@@ -16,10 +16,13 @@ from .geometry import Geometry
 from .kinematics import CORNERS, all_corners, contact_angle, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
-#: CF requires a reference for time coordinates; t = 0 is the start of the imposed ground motion
-#: and the date is arbitrary. Read with ``dccss.results.load`` (or xarray's decode_times=False)
-#: to get seconds rather than dates.
-TIME_UNITS = "seconds since 1970-01-01 00:00:00"
+#: The time coordinate is ``t``: seconds elapsed since the start of the imposed ground motion.
+#: It is deliberately not a CF time coordinate (no ``standard_name``/``axis``, no reference date):
+#: CF requires "seconds since <date>" for those, which xarray decodes to dates. A coordinate
+#: named ``t`` in units of ``s`` passes the CF checker and reads back as float seconds with plain
+#: ``xarray.open_dataset``.
+TIME = "t"
+TIME_UNITS = "s"
 REFERENCE = (
     "Bianco, V.; Monti, G.; Belfiore, N.P. Advanced Multi-Body Modelling of DCCSS Isolators: "
     f"Geometrical Compatibility and Kinematics. Buildings 2021, 11, 50. https://doi.org/{DOI}"
@@ -50,16 +53,14 @@ def coordinates(q, dims, suffix="", when=""):
 
 
 def time_coordinate(times):
-    """The CF time coordinate: seconds from the start of the ground motion (see TIME_UNITS)."""
-    return xr.Variable(("time",), np.asarray(times, dtype=float), {
-        "units": TIME_UNITS, "calendar": "standard", "units_metadata": "leap_seconds: none",
-        "standard_name": "time", "axis": "T",
-        "long_name": "time since the start of the imposed ground motion (the reference date is arbitrary)"})
+    """The time coordinate ``t``: seconds elapsed since the start of the ground motion (see TIME)."""
+    return xr.Variable((TIME,), np.asarray(times, dtype=float), {
+        "units": TIME_UNITS, "long_name": "time since the start of the imposed ground motion"})
 
 
 def load(path) -> xr.Dataset:
-    """Read a dccss netCDF file into memory, times as seconds (as the library made them)."""
-    return xr.load_dataset(path, decode_times=False)
+    """Read a dccss netCDF file into memory (the same as ``xarray.load_dataset(path)``)."""
+    return xr.load_dataset(path)
 
 
 def geometry_attrs(geometry) -> dict:
@@ -82,7 +83,7 @@ def geometry_from_attrs(attrs) -> Geometry:
 def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt, normals,
                     tol, attrs=None) -> xr.Dataset:
     """Dataset of one case from the arrays of ``dccss.models`` (time first, no batch dims)."""
-    t = ("time",)
+    t = (TIME,)
     q = history["q"]
     Xg = excitation.displacement(times)
     data = {
@@ -130,7 +131,7 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
                                                "Newton-Raphson iterations of the sticking phase")
         data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
                                              "final max |constraint residual| of the sticking phase")
-    ds = xr.Dataset(data, coords={"time": time_coordinate(times)})
+    ds = xr.Dataset(data, coords={TIME: time_coordinate(times)})
     ds.attrs = {
         "Conventions": "CF-1.11",
         "title": f"DCCSS kinematics, {MODEL_TITLES[model]} model",

@@ -109,7 +109,7 @@ def histories(datasets: list, caption: str) -> Figure:
     FigureCanvasAgg(fig)
     axs = fig.subplots(3, 1, sharex=True)
     for label, ds in datasets:
-        t = ds["time"].values
+        t = ds["t"].values
         interp = np.max([ds[f"I_{c}"].values for c in "ABCD"], axis=0)
         axs[0].plot(t, ds["theta2"].values, lw=1, label=label)
         axs[1].plot(t, 100 * ds["rise"].values, lw=1, label=label)

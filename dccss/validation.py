@@ -50,7 +50,7 @@ class Results:
 
 
 def _step(ds, t):
-    return int(np.argmin(np.abs(ds["time"].values - t)))
+    return int(np.argmin(np.abs(ds["t"].values - t)))
 
 
 def _sticking_rotation(ds):

@@ -7,9 +7,11 @@ import sys
 from pathlib import Path
 
 import netCDF4
+import numpy as np
 import pytest
+import xarray as xr
 
-from dccss.results import TIME_UNITS, load
+from dccss.results import TIME, TIME_UNITS, load
 
 CHECKER = Path(sys.executable).with_name("cchecker.py")
 
@@ -55,6 +57,15 @@ def test_files_read_back_with_names_and_units(reproduction, name):
     for var in ds.variables.values():
         if var.dtype.kind in "fi":
             assert "units" in var.attrs and "long_name" in var.attrs
-    if "time" in ds:
-        assert ds["time"].attrs["units"] == TIME_UNITS and ds["time"].dtype.kind == "f"  # seconds, not dates
-        assert ds["time"].values[0] == 0.0
+    if TIME in ds.dims:
+        assert ds[TIME].attrs["units"] == TIME_UNITS and ds[TIME].dtype.kind == "f"  # seconds, not dates
+        assert ds[TIME].values[0] == 0.0
+
+
+def test_plain_xarray_reads_time_as_float_seconds(reproduction):
+    """No decode_times=False needed: t is float seconds, and every other variable keeps its dtype."""
+    with xr.open_dataset(reproduction / "results/cases/as_reported/DFP1_stick_slip_dt0.001.nc") as ds:
+        assert ds["t"].dtype == np.float64 and ds["t"].attrs["units"] == "s"
+        assert float(ds["t"][0]) == 0.0 and float(ds["t"][-1]) == pytest.approx(1.0)
+        assert np.allclose(np.diff(ds["t"].values), 0.001)
+        assert not any(v.dtype.kind in "mM" for v in ds.variables.values())  # no datetimes or timedeltas

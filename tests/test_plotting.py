@@ -39,7 +39,7 @@ def datasets(tmp_path_factory):
             ds = breakaway(PROTOTYPES[proto], theta, dXg)
         path = folder / f"{'_'.join(map(str, key))}.nc"
         ds.to_netcdf(path)
-        out[key] = xr.load_dataset(path, decode_times=False)
+        out[key] = xr.load_dataset(path)
     return out
 
 

@@ -73,7 +73,7 @@ def test_fig7_breakaway_differences(proto, normals, dXg, statistic, expected, to
 def test_fig20_triples(proto, dt, t, normals, triple, tol):
     """The step that ends at t: theta2 at its start, at the end of sticking, at its end."""
     ds = run(proto, "stick_slip", dt, normals)
-    n = int(np.argmin(np.abs(ds["time"].values - t)))
+    n = int(np.argmin(np.abs(ds["t"].values - t)))
     got = (ds["theta2"].values[n - 1], ds["theta2_stick"].values[n], ds["theta2"].values[n])
     assert got == pytest.approx(triple, abs=tol)
     assert ds["sticking_diagonal"].values[n] == 1  # X_g decreasing: B2C2 jams

@@ -108,7 +108,7 @@ def test_shipped_study_runs(name, tmp_path):
     work = copy_project(tmp_path)
     run = snakemake(work, "--configfile", f"config/studies/{name}.yaml")
     assert run.returncode == 0, run.stderr[-3000:]
-    ds = xr.open_dataset(work / f"results/studies/{name}/{name}.nc", decode_times=False)
+    ds = xr.open_dataset(work / f"results/studies/{name}/{name}.nc")
     for var in ("theta2_max_abs", "sticking_rotation_max", "rise_max", "rise_end", "theta2_end", "I_A_max",
                 "capacity_exceeded", "newton_iterations_max", "failed"):
         assert var in ds and "units" in ds[var].attrs

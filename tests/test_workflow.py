@@ -41,8 +41,7 @@ def test_outputs_present_and_readable(reproduction):
     cases = sorted((reproduction / "results/cases").rglob("*.nc"))
     assert len(cases) == 2 * 2 * 2 * 2  # prototypes x case sets x dt x models
     assert len(list((reproduction / "results/breakaway").glob("*.nc"))) == 4  # prototypes x normals
-    ds = xr.open_dataset(reproduction / "results/cases/as_reported/DFP1_stick_slip_dt0.001.nc",
-                         decode_times=False)
+    ds = xr.open_dataset(reproduction / "results/cases/as_reported/DFP1_stick_slip_dt0.001.nc")
     assert ds.attrs["Conventions"] == "CF-1.11" and "10.3390/buildings11020050" in ds.attrs["references"]
     assert ds.attrs["case_id"] == "as_reported/DFP1_stick_slip_dt0.001"
     assert len(ds.attrs["case_parameters_sha256"]) == 64

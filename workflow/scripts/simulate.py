@@ -9,4 +9,4 @@ with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contex
     for case, path in zip(snakemake.params.cases, snakemake.output):
         ds = case_from(case).run()
         write_netcdf(ds, path)
-        print(f"{case['id']}: {ds.sizes['time']} steps -> {path}")
+        print(f"{case['id']}: {ds.sizes['t']} steps -> {path}")
