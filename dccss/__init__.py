@@ -28,7 +28,8 @@ from ._version import __version__
 # the public names, imported on first use so that e.g. `dccss.plotting` loads no solver code
 _LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "geometry", "NewtonOptions": "newton",
          "ConvergenceError": "newton", "SingularJacobianError": "newton", "simulate": "simulation",
-         "breakaway": "simulation", "Record": "records"}
+         "breakaway": "simulation", "CapacityError": "simulation", "Record": "records",
+         "RecordWarning": "records", "Scaled": "excitation"}
 __all__ = ["__version__", *_LAZY]
 
 

@@ -9,14 +9,18 @@ Format (lengths in m, angles in degrees, times in s)::
                 # amplitude may be "capacity": R1 sin(alpha1 - alpha21), Table 1's X_g,max
                 # or {kind: table, file: record.csv}  (columns time, displacement; path
                 #     relative to the case file)
-                # or {kind: record, file: rec.AT2, scale: 1.0, window: [t0, t1], baseline: linear}
-                #     (a PEER NGA .AT2 or a time,acceleration CSV, integrated to displacement)
+                # or {kind: record, file: rec.AT2, scale: 1.0, window: [t0, t1], baseline: linear,
+                #     units: g}  (a PEER NGA .AT2/.VT2/.DT2 or a two-column text file with its units
+                #     in a header or in `units`; see dccss.records)
+                # any kind takes `scale: factor`
     theta2_0: 0.0          # optional, default 0
     dt: 0.01
     model: compliant       # or stick_slip
     normals: signed        # optional: signed (default) or unsigned
     newton: {tol: 1.0e-12, max_iter: 25}   # optional
     capacity: continue     # optional: when the pad reaches a ring, continue (flagged), stop or error
+    on_failure: stop       # optional: a solver failure stops with an error (default), or mark: the
+                           # history is written up to the failure and marked (failed, failure_time_s)
     id: my-case            # optional, recorded in the dataset
 """
 
@@ -31,7 +35,7 @@ import numpy as np
 import yaml
 
 from .checks import CaseError, check_keys, choice, number
-from .excitation import Sine, Table
+from .excitation import Scaled, Sine, Table
 from .geometry import Geometry
 from .kinematics import NORMALS
 from .models import MODELS
@@ -40,10 +44,13 @@ from .prototypes import TABLE1
 from .simulation import CAPACITY_POLICIES, simulate
 
 REQUIRED = ("prototype", "excitation", "dt", "model")
-OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue"}
+OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
+            "on_failure": "stop"}
+#: on_failure in case and study files -> the solver's policy (newton.FAILURE_POLICIES)
+ON_FAILURE = {"stop": "raise", "mark": "mark"}
 GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
-EXCITATION_OPTIONAL = {"record": ("scale", "window", "baseline")}
+EXCITATION_OPTIONAL = {"sine": ("scale",), "table": ("scale",), "record": ("scale", "window", "baseline", "units")}
 
 
 def geometry_from(value, key="prototype") -> Geometry:
@@ -67,25 +74,29 @@ def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
         raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
     kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
     check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind], EXCITATION_OPTIONAL.get(kind, ()))
+    if kind == "record":
+        return record_from(value, base, key)
     if kind == "sine":
         amplitude = value["amplitude"]
         amplitude = geometry.capacity1 if amplitude == "capacity" else number(amplitude, f"{key}.amplitude")
-        return Sine(amplitude,
-                    number(value["omega"], f"{key}.omega"),
-                    number(value["duration"], f"{key}.duration", positive=True))
-    if not isinstance(value["file"], str):
-        raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
-    if kind == "table":
+        excitation = Sine(amplitude, number(value["omega"], f"{key}.omega"),
+                          number(value["duration"], f"{key}.duration", positive=True))
+    else:
+        if not isinstance(value["file"], str):
+            raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
         try:
-            return Table.from_csv(base / value["file"])
+            excitation = Table.from_csv(base / value["file"])
         except ValueError as err:
             raise CaseError(f"{key}.file: {err}") from None
-    return record_from(value, base, key)
+    if "scale" not in value:
+        return excitation
+    return Scaled(excitation, number(value["scale"], f"{key}.scale"))
 
 
 def record_from(value, base: Path, key="excitation"):
-    """A Record (acceleration file integrated to displacement) from its mapping."""
-    from .records import BASELINES, Record
+    """A Record (a ground-motion file processed to displacement) from its mapping; ``units`` states
+    the units of the file's motion when the file does not."""
+    from .records import BASELINES, Record, units_from
 
     scale = number(value.get("scale", 1.0), f"{key}.scale")
     window = value.get("window")
@@ -93,9 +104,19 @@ def record_from(value, base: Path, key="excitation"):
         if not isinstance(window, list) or len(window) != 2:
             raise CaseError(f"{key}.window: expected [t_start, t_end] in s, got {window!r}")
         window = tuple(number(w, f"{key}.window") for w in window)
-    baseline = choice(value.get("baseline", "linear"), f"{key}.baseline", BASELINES)
+    baseline = value.get("baseline")
+    if baseline is not None:
+        baseline = choice(baseline, f"{key}.baseline", BASELINES)
+    units = value.get("units")
+    if units is not None:
+        if not isinstance(units, str):
+            raise CaseError(f"{key}.units: expected units such as g, cm/s2, cm/s or cm, got {units!r}")
+        try:
+            units_from(units)
+        except ValueError as err:
+            raise CaseError(f"{key}.units: {err}") from None
     try:
-        return Record.from_file(base / value["file"], scale=scale, window=window, baseline=baseline)
+        return Record.from_file(base / value["file"], scale=scale, window=window, baseline=baseline, units=units)
     except ValueError as err:
         raise CaseError(f"{key}.file: {err}") from None
 
@@ -112,13 +133,14 @@ class Case:
     id: str | None = None
     parameters_hash: str | None = None
     capacity: str = "continue"
+    on_failure: str = "raise"
 
-    def run(self):
-        """Simulate the case: an xarray.Dataset."""
+    def run(self, progress=None):
+        """Simulate the case: an xarray.Dataset (``progress(n, N)`` is called after each step)."""
         attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
-                        capacity=self.capacity, attrs=attrs)
+                        capacity=self.capacity, on_failure=self.on_failure, attrs=attrs, progress=progress)
 
 
 def newton_from(value, key="newton") -> NewtonOptions:
@@ -157,7 +179,8 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
                 normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
                 parameters_hash=parameters_hash(mapping),
-                capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES))
+                capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
+                on_failure=ON_FAILURE[choice(m["on_failure"], "on_failure", ON_FAILURE)])
 
 
 def load_case(path) -> Case:

@@ -1,10 +1,17 @@
-"""Command line: ``dccss run CASE.yaml -o OUT.nc`` (also ``python -m dccss run ...``)."""
+"""Command line: ``dccss run CASE.yaml -o OUT.nc`` (also ``python -m dccss run ...``).
+
+Exit codes: 0 written (also a history marked failed with ``on_failure: mark``), 2 bad input,
+3 solver failure, 4 the pad reached a ring with ``capacity: error``. Warnings (an implausible
+record, a retaining ring reached, a history cut short or marked failed) are one line each on
+stderr; a progress line is shown while stepping when stderr is a terminal (not with --quiet).
+"""
 
 from __future__ import annotations
 
 import argparse
 import sys
 import time
+import warnings
 
 import numpy as np
 
@@ -23,6 +30,46 @@ def _summary(ds) -> str:
             f"max |interpenetration| = {1e3 * interp:.4g} mm")
 
 
+def warnings_of(ds) -> list[str]:
+    """One line for each thing about a written history that its reader must know."""
+    a, out = ds.attrs, []
+    if "capacity_exceeded_at_s" in a:
+        out.append(f"the pad reaches the retaining ring of {a['capacity_exceeded_plate']} at "
+                   f"t = {a['capacity_exceeded_at_s']:.6g} s and passes it by up to "
+                   f"{1e3 * a['capacity_exceeded_by_m']:.3g} mm (capacity: {a['capacity_policy']})")
+    if "stopped_at_s" in a:
+        out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "
+                   f"({ds.sizes['t'] - 1} steps written)")
+    if a.get("failed"):
+        out.append(f"the solver failed at t = {a['failure_time_s']:.6g} s; the history is written up to the "
+                   f"last converged step (on_failure: mark): {a['failure_message']}")
+    return out
+
+
+class _Progress:
+    """A one-line progress display on a terminal, updated at most 10 times a second."""
+
+    def __init__(self, stream):
+        self.stream, self.last, self.shown = stream, 0.0, False
+
+    def __call__(self, n, total):
+        now = time.monotonic()
+        if n < total and now - self.last < 0.1:
+            return
+        self.last, self.shown = now, True
+        self.stream.write(f"\rdccss: step {n}/{total} ({100 * n / max(total, 1):.0f} %)")
+        self.stream.flush()
+
+    def close(self):
+        if self.shown:
+            self.stream.write("\r\033[K")
+            self.stream.flush()
+
+
+def _warn_line(message, category, *args, **kwargs):
+    return f"dccss: warning: {message}\n"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="dccss", description="Kinematics of DCCSS isolators.")
     parser.add_argument("--version", action="version", version=f"dccss {__version__}")
@@ -30,11 +77,13 @@ def main(argv=None) -> int:
     run = sub.add_parser("run", help="run one case file and write its netCDF dataset")
     run.add_argument("case", help="YAML case file")
     run.add_argument("-o", "--output", required=True, help="netCDF file to write")
-    run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success (warnings still)")
     args = parser.parse_args(argv)
+    warnings.formatwarning = _warn_line
     start = time.perf_counter()
+    progress = _Progress(sys.stderr) if sys.stderr.isatty() and not args.quiet else None
     try:
-        ds = load_case(args.case).run()
+        ds = load_case(args.case).run(progress=progress)
     except CaseError as err:
         print(f"dccss: error in {args.case}: {err}", file=sys.stderr)
         return 2
@@ -44,7 +93,12 @@ def main(argv=None) -> int:
     except CapacityError as err:
         print(f"dccss: capacity exceeded in {args.case}: {err}", file=sys.stderr)
         return 4
+    finally:
+        if progress is not None:
+            progress.close()
     write_netcdf(ds, args.output)
+    for line in warnings_of(ds):
+        print(f"dccss: warning: {line}", file=sys.stderr)
     if not args.quiet:
         print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s")
     return 0

@@ -117,6 +117,35 @@ class Table:
                 "table_samples": int(self.time.size)}
 
 
+@dataclass(frozen=True)
+class Scaled:
+    """An excitation multiplied by a constant ``factor`` (X_g and its velocity)."""
+
+    excitation: object
+    factor: float
+
+    @property
+    def kind(self):
+        return self.excitation.kind
+
+    @property
+    def t_start(self):
+        return self.excitation.t_start
+
+    @property
+    def t_end(self):
+        return self.excitation.t_end
+
+    def displacement(self, t):
+        return self.factor * self.excitation.displacement(t)
+
+    def velocity(self, t):
+        return self.factor * self.excitation.velocity(t)
+
+    def attrs(self):
+        return {**self.excitation.attrs(), "excitation_scale": self.factor}
+
+
 def step_times(excitation, dt) -> np.ndarray:
     """t_n = t_start + n dt, n = 0..N, the last step ending at or before t_end."""
     dt = number(dt, "dt", positive=True)

@@ -20,7 +20,20 @@ from .kinematics import frames
 
 
 class ConvergenceError(RuntimeError):
-    """Newton-Raphson did not reach the tolerance within the iteration cap."""
+    """Newton-Raphson did not reach the tolerance within the iteration cap.
+
+    ``detail`` says where and how it failed; ``hint`` what is likely to help. A caller that knows
+    more (e.g. that the pad had already passed a retaining ring) replaces the hint with
+    ``with_hint``.
+    """
+
+    def __init__(self, detail: str, hint: str = "", index: tuple = ()):
+        self.detail, self.hint, self.index = detail, hint, index  # index: the failing case in a batch
+        super().__init__(f"{detail} {hint}".strip())
+
+    def with_hint(self, hint: str, prefix: str = "") -> ConvergenceError:
+        """The same error with another hint (and an optional sentence before the detail)."""
+        return type(self)(f"{prefix} {self.detail}".strip(), hint)
 
 
 class SingularJacobianError(ConvergenceError):
@@ -160,18 +173,25 @@ def _singular(cset, J, context, index):
     raise SingularJacobianError(
         f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
         f"|C_q| = {float(np.linalg.det(J[index])):.3e}. The constraints do not fix the free "
-        f"coordinates {[Q_NAMES[k] for k in cset.free]} here; check the geometry (pad wider "
-        "than its plate, tan alpha = A/B) and the step size."
-    )
+        f"coordinates {[Q_NAMES[k] for k in cset.free]} here.",
+        "Check the geometry (pad wider than its plate, tan alpha = A/B) and the step size.", index)
+
+
+#: a residual within this factor of the tolerance has stalled at round-off, not diverged
+STALLED = 100.0
 
 
 def _not_converged(cset, g, options, context, index):
     a = np.where(np.isnan(g), np.inf, np.abs(g))
     row = int(np.argmax(a))
+    residual = float(a[row])
+    if residual <= STALLED * options.tol:
+        hint = (f"The residual stalls within {STALLED:g} times the tolerance: round-off, not divergence; "
+                "raise newton.tol.")
+    else:
+        hint = ("Likely cause: a step too large for the geometry (the constraints cannot follow the ground "
+                "increment): reduce dt or the amplitude.")
     raise ConvergenceError(
         f"Newton-Raphson did not converge in {cset.phase} ({_where(context, index)}): after "
-        f"{options.max_iter} iterations the residual is {float(a[row]):.3e} m > tol "
-        f"{options.tol:.1e} m; largest: {cset.row_labels()[row]} = {float(g[row]):.3e}. Likely "
-        "causes: a step too large for the geometry (reduce dt or the amplitude), the pad "
-        "beyond the plate capacity, or a tolerance below round-off (raise tol)."
-    )
+        f"{options.max_iter} iterations the residual is {residual:.3e} m > tol "
+        f"{options.tol:.1e} m; largest: {cset.row_labels()[row]} = {float(g[row]):.3e}.", hint, index)

@@ -1,10 +1,42 @@
-"""Recorded ground motions: an acceleration history integrated to an imposed X_g(t).
+"""Recorded ground motions: an acceleration, velocity or displacement history turned into X_g(t).
 
-A :class:`Record` reads a recorded (or synthetic) ground ACCELERATION history, from a PEER NGA
-``.AT2`` file (in g) or a two-column CSV (``time`` in s, ``acceleration`` in m/s²), and turns it
-into a ground displacement and velocity with the interface of ``dccss.excitation`` (``t_start``,
+A :class:`Record` reads a recorded (or synthetic) ground-motion history and turns it into a
+ground displacement and velocity with the interface of ``dccss.excitation`` (``t_start``,
 ``t_end``, ``displacement(t)``, ``velocity(t)``, ``attrs()``), so that ``simulation.simulate``
-accepts it like a ``Sine`` or a ``Table``.
+accepts it like a ``Sine`` or a ``Table``. Inside, everything is SI: s, m/s², m/s, m.
+
+Formats
+-------
+* PEER NGA files: ``.AT2`` (acceleration), ``.VT2`` (velocity), ``.DT2`` (displacement). Line 3
+  states the units, e.g. ``ACCELERATION TIME SERIES IN UNITS OF G`` (NGA-West2), ``ACCELERATION
+  TIME HISTORY IN UNITS OF G`` (older NGA), ``VELOCITY TIME SERIES IN UNITS OF CM/S``,
+  ``DISPLACEMENT TIME SERIES IN UNITS OF CM``: the text after ``UNITS OF`` (or ``UNITS:``, or
+  after ``IN``). A quantity word on that line (ACCELERATION, VELOCITY, DISPLACEMENT) must agree
+  with the extension, and so must the units. Line 4 gives NPTS and DT (``NPTS=  4000, DT= .0100
+  SEC`` or the older ``4000  0.0100  NPTS, DT``); NPTS values follow.
+* Two-column text files: ``.csv``, ``.txt``, ``.dat``; separated by commas, semicolons, tabs or
+  white space (the first of ``,``, ``;``, tab found on the first non-comment line, else white
+  space); lines starting with ``#`` are comments and ignored. The first non-comment line is a
+  header if none of its fields is a number. A header field is a name and optional units in
+  brackets: ``time (s)``, ``acc [g]``, ``acceleration[m/s^2]``, ``disp (cm)``. A column is a time
+  column or a motion column by its units or by a word of its name (``t``/``time``;
+  ``a``/``acc``/``accel…``; ``v``/``vel``/``veloc…``; ``d``/``u``/``disp``/``displ…``); a
+  name that says one quantity and units that say another are refused. With two columns, a
+  column the header does not identify takes its place: time first, then the motion. With more
+  columns the header must identify one time column and one motion column (others are ignored;
+  several motion columns are told apart by ``units``). Without a header the file has exactly two
+  columns. Time is in s (other time units are refused); it must increase strictly and need not
+  be uniform.
+
+Units
+-----
+One table, :data:`UNITS`: acceleration g, m/s2, cm/s2 (= gal), mm/s2; velocity m/s, cm/s, mm/s;
+displacement m, cm, mm. Spelling is case-insensitive and tolerant: ``SEC`` for ``S``, ``S/S``,
+``^2``, ``**2`` or ``²`` for ``S2``, spaces ignored (``CM/SEC/SEC``, ``cm/s^2``, ``CM/S2``,
+``GAL`` are the same unit). The units say the quantity. They come from the file (PEER line 3, a
+header) or from the ``units`` argument (the ``units`` key of a record excitation); when both are
+given they must agree (a PEER file whose line 3 states no units is read with the given ones).
+Units that cannot be told are refused, never guessed.
 
 Why a baseline correction
 -------------------------
@@ -15,12 +47,13 @@ remove a least-squares polynomial trend from the velocity before the second inte
 
 Processing, in this order
 -------------------------
-1. ``scale`` multiplies the acceleration (any finite non-zero number; a negative one flips the
-   record); AT2 values are converted from g with g = 9.80665 m/s².
+1. Units: the samples are converted to SI (g = 9.80665 m/s²); ``scale`` then multiplies them
+   (any finite non-zero number; a negative one flips the record).
 2. ``window=(t0, t1)`` keeps the samples with t0 <= t <= t1 (a bound within 1e-9 dt of a sample
    counts as on it). The record keeps its own time axis: ``t_start`` is the first kept sample (= t0 on
    the sample grid), not 0.
-3. Velocity: v = ∫ a dt from v = 0 at ``t_start`` (``scipy.integrate.cumulative_trapezoid``).
+3. Velocity: an acceleration record is integrated, v = ∫ a dt from v = 0 at ``t_start``
+   (``scipy.integrate.cumulative_trapezoid``); a velocity record is its samples.
 4. Baseline: ``"linear"`` (default) subtracts from v its least-squares straight line p(t),
    ``"quadratic"`` its least-squares parabola, ``"none"`` nothing. Removing p from v is the same
    as removing p'(t) from the acceleration, i.e. a constant (linear) acceleration offset for the
@@ -36,31 +69,123 @@ Processing, in this order
    residual v - p sums to zero, so with a baseline X_g also returns to 0 at ``t_end`` (no
    permanent ground offset: the correction cannot represent one).
 
-Between samples, ``displacement(t)`` and ``velocity(t)`` interpolate the processed samples
-linearly. CSV time need not be uniform (the trapezoidal rule and its weights take the actual
-steps); it must increase strictly.
+A displacement record is not integrated: X_g is its samples as recorded (after units, scale and
+window; so X_g(t_start) is the first kept sample, not necessarily 0), and its velocity is their
+second-order central difference (``numpy.gradient``, as ``dccss.excitation.Table``). Its baseline
+is ``"none"``: ``"linear"`` and ``"quadratic"`` act on an integrated velocity and are refused.
+Integrating each record only as far as needed keeps a processed velocity or displacement from
+being processed again.
 
-Errors are ``ValueError``s that name the file (or the ``source`` of arrays) and the problem.
+Peak ground acceleration and plausibility
+-----------------------------------------
+``acceleration`` (hence ``pga``) is the corrected acceleration of an acceleration record; for a
+velocity record the central difference of the corrected velocity (``numpy.gradient``), for a
+displacement record the three-point second difference of the displacement (the end samples
+take their neighbour's value). On uniform steps both estimates equal (a[i-1] + 2 a[i] + a[i+1])/4
+of a trapezoid-integrated acceleration, slightly below its peak for components near the Nyquist
+frequency. A peak outside 0.001 g to 5 g (:data:`PGA_PLAUSIBLE_G`), usually wrong units or
+scale, is reported: a :class:`RecordWarning` and the ``record_warning`` attribute.
+
+Between samples, ``displacement(t)`` and ``velocity(t)`` interpolate the processed samples
+linearly.
+
+Errors are ``ValueError``s that name the file (or the ``source`` of arrays), the line where there
+is one, and the problem.
 """
 
 from __future__ import annotations
 
 import hashlib
 import re
+import warnings
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 from numpy.polynomial import Polynomial
 from scipy.integrate import cumulative_trapezoid
 
-G = 9.80665  # standard gravity (m/s²), the unit of AT2 files
+G = 9.80665  # standard gravity (m/s²)
 BASELINES = {"none": None, "linear": 1, "quadratic": 2}  # degree of the velocity trend removed
 MIN_SAMPLES = 3
+PGA_PLAUSIBLE_G = (0.001, 5.0)  # a peak ground acceleration outside this range (g) is reported
+QUANTITIES = ("acceleration", "velocity", "displacement")
+PEER_QUANTITY = {".at2": "acceleration", ".vt2": "velocity", ".dt2": "displacement"}
+TEXT_SUFFIXES = (".csv", ".txt", ".dat")
 _SNAP = 1e-9  # relative (to dt) tolerance for window bounds on the sample grid
+
+# Units, by their normalised spelling (see _unit_key): (quantity, factor to SI).
+UNITS = {
+    "G": ("acceleration", G), "M/S2": ("acceleration", 1.0), "CM/S2": ("acceleration", 1e-2),
+    "GAL": ("acceleration", 1e-2), "MM/S2": ("acceleration", 1e-3),
+    "M/S": ("velocity", 1.0), "CM/S": ("velocity", 1e-2), "MM/S": ("velocity", 1e-3),
+    "M": ("displacement", 1.0), "CM": ("displacement", 1e-2), "MM": ("displacement", 1e-3),
+    "S": ("time", 1.0),
+}
+SI_UNITS = {"time": "s", "acceleration": "m/s2", "velocity": "m/s", "displacement": "m"}
+_SPELLINGS = [(r"\s+|\*\*|\^", ""), ("²", "2"), (r"SEC(OND)?S?", "S"), (r"/S/S$", "/S2")]
 
 _NUMBER = r"([^\s,]+)"
 _HEADER_NEW = re.compile(rf"^\s*NPTS\s*=\s*{_NUMBER}\s*,?\s*DT\s*=\s*{_NUMBER}", re.IGNORECASE)
 _HEADER_OLD = re.compile(rf"^\s*{_NUMBER}\s+{_NUMBER}\s+NPTS\s*,\s*DT\b", re.IGNORECASE)
+# PEER line 3: the units follow "IN UNITS OF", "UNITS OF", "UNITS:" or "IN"
+_UNITS_LINE = re.compile(r"(?:\bIN\s+UNITS?\s+OF\b|\bUNITS?\s*(?:OF\b|:|=)|\bIN\b(?!\s+UNITS?\b))"
+                         r"\s*(?P<units>\S.*?)\s*$", re.IGNORECASE)
+_QUANTITY_WORD = {"acceleration": r"acc|accel\w*", "velocity": r"vel|veloc\w*", "displacement": r"disp|displ\w*"}
+_COLUMN_WORD = {"time": r"t|time", "acceleration": r"a|acc|accel\w*", "velocity": r"v|vel|veloc\w*",
+                "displacement": r"d|u|disp|displ\w*"}
+_BRACKETS = re.compile(r"[(\[]\s*([^)\]]*?)\s*[)\]]")
+_HEADER_TOKEN = re.compile(r"[^\s(\[]+(?:\s*[(\[][^)\]]*[)\]])?|[(\[][^)\]]*[)\]]")
+_SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
+
+
+class RecordWarning(UserWarning):
+    """A record that reads without error but looks wrong (an implausible peak ground acceleration)."""
+
+
+class Units(NamedTuple):
+    """Units of a record's samples."""
+
+    text: str  # as written in the file or given
+    quantity: str  # "time", "acceleration", "velocity" or "displacement"
+    to_si: float  # factor to s, m/s², m/s or m
+
+    def same_as(self, other: Units) -> bool:
+        return (self.quantity, self.to_si) == (other.quantity, other.to_si)
+
+
+def _unit_key(text) -> str:
+    key = str(text).upper().strip(" .")
+    for pattern, replacement in _SPELLINGS:
+        key = re.sub(pattern, replacement, key)
+    return key
+
+
+def allowed_units(quantity=None) -> str:
+    """The units of ``quantity`` (default: all motion quantities), for messages."""
+    quantities = QUANTITIES if quantity is None else (quantity,)
+    groups = [f"{q}: " + ", ".join(k.lower() for k, (kq, _) in UNITS.items() if kq == q) for q in quantities]
+    return "; ".join(groups) + " (case-insensitive; SEC for S, S/S, ^2, **2 or ² for S2)"
+
+
+def units_from(text) -> Units:
+    """The :class:`Units` written ``text`` (e.g. ``"G"``, ``"CM/S/S"``, ``"cm/s^2"``, ``"gal"``, ``"cm"``).
+
+    Raises
+    ------
+    ValueError
+        Unknown units; the message lists the allowed ones.
+    """
+    key = _unit_key(text)
+    if key not in UNITS:
+        raise ValueError(f"unknown units {str(text)!r}; allowed: {allowed_units()}")
+    return Units(str(text).strip(), *UNITS[key])
+
+
+def _kind(path) -> str:
+    """'an AT2 file', 'a VT2 file', ... for messages."""
+    name = Path(path).suffix.upper().lstrip(".") or "PEER"
+    return f"{'an' if name[0] in 'AEIOU' else 'a'} {name} file"
 
 
 def _fail(path, problem):
@@ -84,6 +209,14 @@ def _float(token, path, line_no, what="value"):
         raise _fail(path, f"line {line_no}: {what} {token!r} is not a number") from None
 
 
+def _is_number(token) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
 def _check_finite(values, lines, path, what):
     bad = ~np.isfinite(values)
     if bad.any():
@@ -91,22 +224,87 @@ def _check_finite(values, lines, path, what):
         raise _fail(path, f"line {lines[i]}: {what} {float(values[i])!r} is not finite")
 
 
-def read_at2(path) -> tuple[float, np.ndarray]:
-    """Read a PEER NGA ``.AT2`` acceleration file.
+def _given_units(path, units) -> Units | None:
+    """The ``units`` argument parsed, a motion unit; errors name the file."""
+    if units is None:
+        return None
+    try:
+        given = units_from(units)
+    except ValueError as err:
+        raise _fail(path, f"units: {err}") from None
+    if given.quantity == "time":
+        raise _fail(path, f"units {given.text!r} is a time unit; give the units of the motion: {allowed_units()}")
+    return given
+
+
+def _words_quantity(text, table) -> str | None:
+    """The one quantity named by the words of ``text`` (see the tables above), else None."""
+    words = re.findall(r"[a-z]+", text.lower())
+    named = {q for word in words for q, pattern in table.items() if re.fullmatch(pattern, word)}
+    return named.pop() if len(named) == 1 else None
+
+
+# --- PEER NGA files --------------------------------------------------------------------------------
+def _peer_units(path, line, quantity, given) -> Units:
+    """Units from line 3 of a PEER file holding ``quantity`` (None: as the line says), checked against ``given``."""
+    kind = _kind(path)
+    said = _words_quantity(line, _QUANTITY_WORD)
+    if quantity is not None and said is not None and said != quantity:
+        raise _fail(path, f"line 3: {line.strip()!r} says {said}, but {kind} holds {quantity}")
+    quantity = quantity or said
+    allowed = allowed_units(quantity)
+    match = _UNITS_LINE.search(line)
+    stated = None
+    if match is not None:
+        try:
+            stated = units_from(match["units"])
+        except ValueError:
+            raise _fail(path, f"line 3: unknown units {match['units']!r} in {line.strip()!r}; "
+                              f"allowed: {allowed}") from None
+        if stated.quantity != (quantity or stated.quantity) or stated.quantity not in QUANTITIES:
+            raise _fail(path, f"line 3: {stated.text!r} are units of {stated.quantity}, but {kind} holds "
+                              f"{quantity or 'a ground motion'}; allowed: {allowed}")
+    elif given is None:
+        raise _fail(path, f"line 3: no units in {line.strip()!r}; expected e.g. "
+                          f"'{(quantity or 'acceleration').upper()} TIME SERIES IN UNITS OF ...' with one of "
+                          f"{allowed}, or give units")
+    if given is not None:
+        if quantity is not None and given.quantity != quantity:
+            raise _fail(path, f"units {given.text!r} are units of {given.quantity}, but {kind} holds {quantity}")
+        if stated is not None and not stated.same_as(given):
+            raise _fail(path, f"line 3 states units {stated.text!r}, but units {given.text!r} were given")
+    return stated or given
+
+
+def read_peer(path, units=None, quantity=None) -> tuple[float, np.ndarray, Units]:
+    """Read a PEER NGA ``.AT2`` (acceleration), ``.VT2`` (velocity) or ``.DT2`` (displacement) file.
 
     Four header lines (database, event/station/component, units, then ``NPTS=  4000, DT= .0100
     SEC`` or the older ``4000  0.0100  NPTS, DT``) followed by NPTS whitespace-separated values.
+
+    Parameters
+    ----------
+    path : the file.
+    units : optional units of the values (text); they must agree with line 3. Only needed when
+        line 3 states none.
+    quantity : what the file must hold; default from the extension (none for others: line 3 says).
 
     Returns
     -------
     dt : float
         Sampling interval (s), > 0.
-    acc_g : ndarray, shape (NPTS,)
-        Acceleration in g (not converted).
+    values : ndarray, shape (NPTS,)
+        The samples as written (not converted).
+    units : Units
+        Their units, as line 3 (or ``units``) states them.
     """
+    path = Path(path)
+    quantity = quantity or PEER_QUANTITY.get(path.suffix.lower())
+    given = _given_units(path, units)
     lines = _read_lines(path)
     if len(lines) < 4:
-        raise _fail(path, f"has {len(lines)} line(s); an AT2 file has 4 header lines, the 4th with NPTS and DT")
+        raise _fail(path, f"has {len(lines)} line(s); {_kind(path)} has 4 header lines, the 4th with NPTS and DT")
+    stated = _peer_units(path, lines[2], quantity, given)
     header = lines[3]
     match = _HEADER_NEW.match(header) or _HEADER_OLD.match(header)
     if match is None:
@@ -126,75 +324,221 @@ def read_at2(path) -> tuple[float, np.ndarray]:
             where.append(line_no)
     if len(values) != npts:
         raise _fail(path, f"the header says NPTS={npts} but the file has {len(values)} value(s)")
-    acc = np.array(values, dtype=float)
-    _check_finite(acc, where, path, "value")
-    return dt, acc
+    values = np.array(values, dtype=float)
+    _check_finite(values, where, path, "value")
+    return dt, values, stated
 
 
-def write_at2(path, dt, acc_g, title="dccss acceleration record", database="dccss") -> None:
-    """Write an acceleration history (in g) in the PEER NGA ``.AT2`` format, 5 values per line.
+def read_at2(path) -> tuple[float, np.ndarray]:
+    """Read a PEER NGA ``.AT2`` acceleration file (see :func:`read_peer`).
+
+    Returns
+    -------
+    dt : float
+        Sampling interval (s), > 0.
+    acc_g : ndarray, shape (NPTS,)
+        Acceleration in g (converted from the units of line 3; as written if they are g).
+    """
+    dt, values, units = read_peer(path, quantity="acceleration")
+    return dt, values * (units.to_si / G)
+
+
+def write_peer(path, dt, values, units, title="dccss record", database="dccss", decimals=7) -> None:
+    """Write a history in the PEER NGA format (``.AT2``/``.VT2``/``.DT2``), 5 values per line.
 
     Parameters
     ----------
     path : output file.
     dt : sampling interval (s).
-    acc_g : 1-D acceleration samples in g.
+    values : 1-D samples, in ``units``.
+    units : their units as written on line 3 (e.g. ``"G"``, ``"CM/S/S"``, ``"CM/S"``, ``"CM"``),
+        which also give the quantity word of line 3.
     title : line 2 (event, station, component).
     database : line 1.
+    decimals : digits after the point of the E format (7, PEER's, keeps 8 significant digits).
     """
-    acc = np.asarray(acc_g, dtype=float).ravel()
-    rows = [" ".join(f"{v:15.7E}" for v in acc[i:i + 5]) for i in range(0, acc.size, 5)]
-    header = [database, title, "ACCELERATION TIME SERIES IN UNITS OF G",
-              f"NPTS= {acc.size:7d}, DT= {float(dt):.10g} SEC"]
+    quantity = units_from(units).quantity
+    values = np.asarray(values, dtype=float).ravel()
+    width = decimals + 8
+    rows = [" ".join(f"{v:{width}.{decimals}E}" for v in values[i:i + 5]) for i in range(0, values.size, 5)]
+    header = [database, title, f"{quantity.upper()} TIME SERIES IN UNITS OF {units}",
+              f"NPTS= {values.size:7d}, DT= {float(dt):.10g} SEC"]
     Path(path).write_text("\n".join(header + rows) + "\n")
 
 
-def read_acceleration_csv(path) -> tuple[np.ndarray, np.ndarray]:
-    """Read a CSV whose header names the columns ``time`` (s) and ``acceleration`` (m/s²).
+def write_at2(path, dt, acc_g, title="dccss acceleration record", database="dccss", units="G", decimals=7) -> None:
+    """Write an acceleration history (in ``units``, default g) in the PEER NGA ``.AT2`` format
+    (see :func:`write_peer`)."""
+    write_peer(path, dt, acc_g, units, title=title, database=database, decimals=decimals)
 
-    Other columns are ignored. Time must be finite and increase strictly; it need not be uniform.
+
+# --- text files --------------------------------------------------------------------------------------
+class _Column(NamedTuple):
+    label: str  # the header field
+    named: str | None  # the quantity its name says
+    units_text: str | None  # the units in brackets, as written
+    units: Units | None  # those units, if known
+
+    @property
+    def quantity(self):
+        return self.units.quantity if self.units is not None else self.named
+
+
+def _column(label) -> _Column:
+    match = _BRACKETS.search(label)
+    units_text = match[1] if match else None
+    name = label[:match.start()] + label[match.end():] if match else label
+    try:
+        units = units_from(units_text) if units_text else None
+    except ValueError:
+        units = None
+    return _Column(label, _words_quantity(name, _COLUMN_WORD), units_text, units)
+
+
+def _split(line, separator) -> list[str]:
+    return [f.strip() for f in line.split(separator)] if separator else line.split()
+
+
+def _text_columns(path, line_no, columns, given) -> tuple[int, int, Units]:
+    """Indices of the time and motion columns of a header, and the motion's units."""
+    where = f"line {line_no}"
+    for c in columns:
+        if c.named and c.units and c.named != c.units.quantity:
+            raise _fail(path, f"{where}: column {c.label!r} is named as {c.named} but {c.units.text!r} are units of "
+                              f"{c.units.quantity}")
+    times = [j for j, c in enumerate(columns) if c.quantity == "time"]
+    motions = [j for j, c in enumerate(columns) if c.quantity in QUANTITIES]
+    if given is not None and len(motions) > 1:
+        motions = [j for j in motions if columns[j].quantity == given.quantity]
+    labels = [c.label for c in columns]
+    if len(times) > 1:
+        raise _fail(path, f"{where}: more than one time column in {labels}")
+    if len(motions) > 1:
+        raise _fail(path, f"{where}: more than one motion column in {labels}; keep one, or give units to choose "
+                          f"by quantity")
+    if len(columns) == 2:  # time first, then the motion, unless the header says otherwise
+        time = times[0] if times else (1 - motions[0] if motions else 0)
+        motion = motions[0] if motions else 1 - time
+    elif not (times and motions):
+        missing = "time" if not times else "motion"
+        raise _fail(path, f"{where}: with {len(columns)} columns the header must name the {missing} column, e.g. "
+                          f"'time (s), acceleration (g)'; got {labels}")
+    else:
+        time, motion = times[0], motions[0]
+    t, m = columns[time], columns[motion]
+    if t.units_text is not None and (t.units is None or t.units.quantity != "time"):
+        raise _fail(path, f"{where}: the time column {t.label!r} must be in s, got {t.units_text!r}")
+    if m.units_text is not None and m.units is None:
+        raise _fail(path, f"{where}: unknown units {m.units_text!r} in column {m.label!r}; allowed: "
+                          f"{allowed_units(m.named)}")
+    if given is not None:
+        if m.quantity is not None and m.quantity != given.quantity:
+            raise _fail(path, f"{where}: column {m.label!r} holds {m.quantity}, but units {given.text!r} are units of "
+                              f"{given.quantity}")
+        if m.units is not None and not m.units.same_as(given):
+            raise _fail(path, f"{where}: the header states units {m.units.text!r} for column {m.label!r}, but units "
+                              f"{given.text!r} were given")
+    units = m.units or given
+    if units is None:
+        raise _fail(path, f"{where}: cannot tell the units of column {m.label!r}: state them in the header, e.g. "
+                          f"'time (s), acceleration (g)', or give units (the 'units' key of a record excitation, e.g. "
+                          f"units: cm/s2); allowed: {allowed_units()}")
+    return time, motion, units
+
+
+def read_text(path, units=None) -> tuple[np.ndarray, np.ndarray, Units]:
+    """Read a two-column (time, motion) text file: ``.csv``, ``.txt`` or ``.dat`` (module docstring).
+
+    Parameters
+    ----------
+    path : the file.
+    units : units of the motion column (text), needed when the header does not state them; they
+        must agree with the header.
+
+    Returns
+    -------
+    time : ndarray
+        Sample times (s), finite and strictly increasing.
+    values : ndarray
+        The motion samples as written (not converted).
+    units : Units
+        Their units (from the header, else ``units``).
+    """
+    path = Path(path)
+    given = _given_units(path, units)
+    rows = [(n, line) for n, line in enumerate(_read_lines(path), start=1)
+            if line.strip() and not line.lstrip().startswith("#")]
+    if not rows:
+        raise _fail(path, "has no data rows (only comments)")
+    first_no, first = rows[0]
+    separator = next((s for s in _SEPARATORS if s in first), None)
+    if not any(_is_number(f) for f in _split(first, separator)):  # a header
+        labels = _split(first, separator) if separator else _HEADER_TOKEN.findall(first)
+        rows = rows[1:]
+        if not rows:
+            raise _fail(path, "has a header but no data rows")
+        width = len(labels)
+        time_col, motion_col, units = _text_columns(path, first_no, [_column(label) for label in labels], given)
+    else:
+        width = len(_split(first, separator))
+        if width != 2:
+            raise _fail(path, f"line {first_no}: without a header a record has 2 columns (time in s, then the motion), "
+                              f"got {width}; add a header naming them, e.g. 'time (s), acceleration (g)'")
+        if given is None:
+            raise _fail(path, "has no header stating the units: add one, e.g. 'time (s), acceleration (g)', or give "
+                              "units (the 'units' key of a record excitation, e.g. units: cm/s2); allowed: "
+                              f"{allowed_units()}")
+        time_col, motion_col, units = 0, 1, given
+    kind = _SEPARATORS.get(separator, "whitespace")
+    time, values, where = [], [], []
+    for line_no, line in rows:
+        fields = _split(line, separator)
+        if len(fields) != width:
+            raise _fail(path, f"line {line_no}: expected {width} {kind}-separated fields, got {len(fields)}")
+        time.append(_float(fields[time_col], path, line_no, "time"))
+        values.append(_float(fields[motion_col], path, line_no, units.quantity))
+        where.append(line_no)
+    time, values = np.array(time), np.array(values)
+    _check_finite(time, where, path, "time")
+    _check_finite(values, where, path, units.quantity)
+    steps = np.diff(time)
+    if (steps <= 0).any():
+        i = int(np.argmax(steps <= 0))
+        raise _fail(path, f"line {where[i + 1]}: time must increase strictly; {float(time[i + 1])!r} s "
+                          f"follows {float(time[i])!r} s")
+    return time, values, units
+
+
+def read_acceleration_csv(path, units=None) -> tuple[np.ndarray, np.ndarray]:
+    """Read an acceleration text file (see :func:`read_text`).
 
     Returns
     -------
     time, acc : ndarray
         Sample times (s) and acceleration (m/s²).
     """
-    lines = _read_lines(path)
-    header = [h.strip() for h in lines[0].split(",")]
-    if "time" not in header or "acceleration" not in header:
-        raise _fail(path, f"line 1: expected a header naming the columns 'time' and 'acceleration', got {header}")
-    columns = {name: header.index(name) for name in ("time", "acceleration")}
-    data = {name: [] for name in columns}
-    where = []
-    for line_no, line in enumerate(lines[1:], start=2):
-        if not line.strip():
-            continue
-        fields = line.split(",")
-        if len(fields) != len(header):
-            raise _fail(path, f"line {line_no}: expected {len(header)} comma-separated fields, got {len(fields)}")
-        for name, j in columns.items():
-            data[name].append(_float(fields[j].strip(), path, line_no, name))
-        where.append(line_no)
-    if not where:
-        raise _fail(path, "has a header but no data rows")
-    time = np.array(data["time"])
-    acc = np.array(data["acceleration"])
-    _check_finite(time, where, path, "time")
-    _check_finite(acc, where, path, "acceleration")
-    steps = np.diff(time)
-    if (steps <= 0).any():
-        i = int(np.argmax(steps <= 0))
-        raise _fail(path, f"line {where[i + 1]}: time must increase strictly; {float(time[i + 1])!r} s "
-                          f"follows {float(time[i])!r} s")
-    return time, acc
+    time, values, stated = read_text(path, units)
+    if stated.quantity != "acceleration":
+        raise _fail(path, f"holds {stated.quantity} ({stated.text}), not acceleration")
+    return time, values * stated.to_si
 
 
+# --- processing --------------------------------------------------------------------------------------
 def _trapezoid_weights(t):
     w = np.zeros_like(t)
     h = np.diff(t) / 2
     w[:-1] += h
     w[1:] += h
     return w
+
+
+def _remove_trend(time, vel, baseline):
+    """(v - p, p') for the weighted least-squares polynomial p of the baseline's degree (p' = 0 for "none")."""
+    degree = BASELINES[baseline]
+    if degree is None:
+        return vel, 0.0
+    trend = Polynomial.fit(time, vel, degree, w=np.sqrt(_trapezoid_weights(time)))
+    return vel - trend(time), trend.deriv()(time)
 
 
 def integrate(time, acc, baseline="linear"):
@@ -215,13 +559,27 @@ def integrate(time, acc, baseline="linear"):
     """
     if baseline not in BASELINES:
         raise ValueError(f"baseline must be one of {list(BASELINES)}, got {baseline!r}")
-    vel = cumulative_trapezoid(acc, time, initial=0.0)
-    degree = BASELINES[baseline]
-    if degree is not None:
-        trend = Polynomial.fit(time, vel, degree, w=np.sqrt(_trapezoid_weights(time)))
-        vel = vel - trend(time)
-        acc = acc - trend.deriv()(time)
-    return acc, vel, cumulative_trapezoid(vel, time, initial=0.0)
+    vel, slope = _remove_trend(time, cumulative_trapezoid(acc, time, initial=0.0), baseline)
+    return acc - slope, vel, cumulative_trapezoid(vel, time, initial=0.0)
+
+
+def _second_difference(time, x):
+    """d²x/dt² by the three-point formula (exact for parabolas); the ends take their neighbour's value."""
+    h = np.diff(time)
+    acc = np.empty_like(x)
+    acc[1:-1] = 2 * np.diff(np.diff(x) / h) / (h[:-1] + h[1:])
+    acc[0], acc[-1] = acc[1], acc[-2]
+    return acc
+
+
+def _motion(time, samples, quantity, baseline):
+    """(acceleration, velocity, displacement) samples (SI) of a record of ``quantity``, integrated as far as needed."""
+    if quantity == "acceleration":
+        return integrate(time, samples, baseline)
+    if quantity == "velocity":
+        vel, _ = _remove_trend(time, samples, baseline)
+        return np.gradient(vel, time), vel, cumulative_trapezoid(vel, time, initial=0.0)
+    return _second_difference(time, samples), np.gradient(samples, time), samples
 
 
 def _scale(value, source):
@@ -231,6 +589,19 @@ def _scale(value, source):
     if not np.isfinite(value) or value == 0:
         raise ValueError(f"record {source!r}: scale must be finite and non-zero, got {value!r}")
     return value
+
+
+def _baseline(baseline, quantity, source):
+    """The baseline (default "linear"; "none" for a displacement record, which refuses the others)."""
+    if baseline is None:
+        return "none" if quantity == "displacement" else "linear"
+    if baseline not in BASELINES:
+        raise ValueError(f"record {source!r}: baseline must be one of {list(BASELINES)}, got {baseline!r}")
+    if quantity == "displacement" and baseline != "none":
+        raise ValueError(f"record {source!r}: baseline {baseline!r} removes a trend from an integrated velocity, but "
+                         f"a displacement record is used as recorded, not integrated; leave baseline out or set it "
+                         f"to 'none'")
+    return baseline
 
 
 def _window(time, window, source):
@@ -252,72 +623,111 @@ def _window(time, window, source):
 
 
 class Record:
-    """Imposed ground motion from a recorded acceleration history (see the module docstring).
+    """Imposed ground motion from a recorded history (see the module docstring).
+
+    Give exactly one of ``acceleration``, ``velocity``, ``displacement``.
 
     Parameters
     ----------
     time : (n,) strictly increasing sample times (s).
-    acceleration : (n,) raw ground acceleration (m/s²), before scale and baseline correction.
+    acceleration, velocity, displacement : (n,) raw ground motion in ``units``, before scale and
+        baseline correction.
+    units : units of those samples (text, see :data:`UNITS`); default SI (m/s2, m/s, m).
     source : what the record is (a file name); named in errors and in ``attrs()``.
     sha256 : SHA-256 of the source file's bytes, recorded in ``attrs()`` (``from_file`` sets it).
-    scale : finite non-zero factor on the acceleration.
+    scale : finite non-zero factor on the samples.
     window : optional (t0, t1) (s): keep only the samples in that interval.
-    baseline : "linear" (default), "quadratic" or "none".
+    baseline : "linear", "quadratic" or "none"; default "linear", and "none" (the only one
+        allowed) for a displacement record.
 
     Attributes
     ----------
     time, acceleration, velocity_samples, displacement_samples : ndarray
-        The processed samples: windowed times (s), scaled and corrected acceleration (m/s²),
-        velocity (m/s) and displacement (m).
+        The processed samples: windowed times (s), scaled and corrected (or, for velocity and
+        displacement records, estimated) acceleration (m/s²), velocity (m/s) and displacement (m).
+    quantity, units : str
+        What the raw samples are and their units as written.
+    warning : str
+        Why the record looks wrong ("" if it does not): a peak ground acceleration outside
+        :data:`PGA_PLAUSIBLE_G`.
     """
 
     kind = "record"
 
-    def __init__(self, time, acceleration, *, source="arrays", scale=1.0, window=None, baseline="linear",
-                 sha256=""):
+    def __init__(self, time, acceleration=None, *, velocity=None, displacement=None, units=None, source="arrays",
+                 scale=1.0, window=None, baseline=None, sha256=""):
+        given = {q: v for q, v in zip(QUANTITIES, (acceleration, velocity, displacement), strict=True) if v is not None}
+        if len(given) != 1:
+            raise ValueError(f"record {source!r}: give exactly one of acceleration, velocity, displacement; "
+                             f"got {list(given) or 'none'}")
+        ((quantity, samples),) = given.items()
+        try:
+            units = units_from(SI_UNITS[quantity] if units is None else units)
+        except ValueError as err:
+            raise ValueError(f"record {source!r}: {err}") from None
+        if units.quantity != quantity:
+            raise ValueError(f"record {source!r}: units {units.text!r} are units of {units.quantity}, not {quantity}")
         time = np.asarray(time, dtype=float)
-        acc = np.asarray(acceleration, dtype=float)
-        if time.ndim != 1 or acc.shape != time.shape:
-            raise ValueError(f"record {source!r}: time and acceleration must be 1-D of equal length, "
-                             f"got shapes {time.shape} and {acc.shape}")
-        if not (np.isfinite(time).all() and np.isfinite(acc).all()):
-            raise ValueError(f"record {source!r}: time and acceleration must be finite")
+        samples = np.asarray(samples, dtype=float)
+        if time.ndim != 1 or samples.shape != time.shape:
+            raise ValueError(f"record {source!r}: time and {quantity} must be 1-D of equal length, "
+                             f"got shapes {time.shape} and {samples.shape}")
+        if not (np.isfinite(time).all() and np.isfinite(samples).all()):
+            raise ValueError(f"record {source!r}: time and {quantity} must be finite")
         if time.size >= 2 and (np.diff(time) <= 0).any():
             raise ValueError(f"record {source!r}: time must increase strictly")
-        if baseline not in BASELINES:
-            raise ValueError(f"record {source!r}: baseline must be one of {list(BASELINES)}, got {baseline!r}")
         self.source = str(source)
         self.sha256 = str(sha256)
+        self.quantity = quantity
+        self.units = units.text
+        self.baseline = _baseline(baseline, quantity, source)
         self.scale = _scale(scale, source)
-        self.baseline = baseline
         self.raw_npts = int(time.size)
         if time.size < MIN_SAMPLES:
             raise ValueError(f"record {source!r}: has {time.size} sample(s); at least {MIN_SAMPLES} are needed")
         cut = _window(time, window, source)
         self.window = (float(window[0]), float(window[1])) if window is not None else None
-        time, acc = time[cut], acc[cut]
+        time, samples = time[cut], samples[cut]
         if time.size < MIN_SAMPLES:
             raise ValueError(f"record {source!r}: the window {window!r} s holds {time.size} sample(s); "
                              f"at least {MIN_SAMPLES} are needed")
         self.time = time
-        self.acceleration, self.velocity_samples, self.displacement_samples = integrate(
-            time, self.scale * acc, baseline)
+        self.acceleration, self.velocity_samples, self.displacement_samples = _motion(
+            time, self.scale * (units.to_si * samples), quantity, self.baseline)
+        self.warning = self._plausibility()
+        if self.warning:
+            warnings.warn(self.warning, RecordWarning, stacklevel=2)
 
     @classmethod
-    def from_file(cls, path, scale=1.0, window=None, baseline="linear") -> Record:
-        """Read ``path`` (``.AT2``/``.at2``: PEER NGA, in g; ``.csv``: time, acceleration in m/s²)
-        and process it; errors name the file."""
+    def from_file(cls, path, scale=1.0, window=None, baseline=None, units=None) -> Record:
+        """Read ``path`` and process it; errors name the file.
+
+        ``.AT2``/``.VT2``/``.DT2``: PEER NGA acceleration, velocity, displacement (:func:`read_peer`);
+        ``.csv``/``.txt``/``.dat``: two columns, time and motion (:func:`read_text`). ``units``
+        states the units of the motion when the file does not (and must agree when it does).
+        """
         path = Path(path)
         suffix = path.suffix.lower()
-        if suffix == ".at2":
-            dt, acc_g = read_at2(path)
-            time, acc = dt * np.arange(acc_g.size), G * acc_g
-        elif suffix == ".csv":
-            time, acc = read_acceleration_csv(path)
+        if suffix in PEER_QUANTITY:
+            dt, values, stated = read_peer(path, units)
+            time = dt * np.arange(values.size)
+        elif suffix in TEXT_SUFFIXES:
+            time, values, stated = read_text(path, units)
         else:
-            raise _fail(path, f"unknown record format {path.suffix!r}; expected .AT2 (PEER NGA) or .csv")
-        return cls(time, acc, source=str(path), scale=scale, window=window, baseline=baseline,
-                   sha256=hashlib.sha256(path.read_bytes()).hexdigest())
+            raise _fail(path, f"unknown record format {path.suffix!r}; expected .AT2, .VT2, .DT2 (PEER NGA) or "
+                              f".csv, .txt, .dat (time and motion columns)")
+        return cls(time, **{stated.quantity: values}, units=stated.text, source=str(path), scale=scale,
+                   window=window, baseline=baseline, sha256=hashlib.sha256(path.read_bytes()).hexdigest())
+
+    def _plausibility(self) -> str:
+        low, high = PGA_PLAUSIBLE_G
+        pga_g = self.pga / G
+        if low <= pga_g <= high:
+            return ""
+        side = f"above {high:g} g" if pga_g > high else f"below {low:g} g"
+        how = "" if self.quantity == "acceleration" else f", estimated from the {self.quantity},"
+        return (f"record {Path(self.source).name!r}: the peak ground acceleration{how} is {pga_g:.3g} g, {side}: "
+                f"implausible for a ground motion; check the units ({self.units!r}) and the scale ({self.scale:g})")
 
     @property
     def t_start(self) -> float:
@@ -342,7 +752,7 @@ class Record:
 
     @property
     def pga(self) -> float:
-        """Peak ground acceleration after processing (m/s²)."""
+        """Peak ground acceleration after processing (m/s²); estimated for velocity and displacement records."""
         return float(np.max(np.abs(self.acceleration)))
 
     @property
@@ -364,14 +774,20 @@ class Record:
         return np.interp(t, self.time, self.velocity_samples)
 
     def attrs(self) -> dict:
-        """netCDF global attributes (str, int, float) describing the record and its processing."""
+        """netCDF global attributes (str, int, float) describing the record and its processing;
+        ``record_warning`` only when there is a warning."""
         start, end = self.window if self.window is not None else (self.t_start, self.t_end)
-        return {"excitation": "record", "record_source": Path(self.source).name, "record_sha256": self.sha256,
-                "record_npts": self.npts, "record_raw_npts": self.raw_npts, "record_dt_s": self.dt,
-                "record_scale": self.scale, "record_window_start_s": float(start),
-                "record_window_end_s": float(end), "record_baseline": self.baseline,
-                "record_pga_m_per_s2": self.pga, "record_pgv_m_per_s": self.pgv, "record_pgd_m": self.pgd}
+        attrs = {"excitation": "record", "record_source": Path(self.source).name, "record_sha256": self.sha256,
+                 "record_quantity": self.quantity, "record_units": self.units,
+                 "record_npts": self.npts, "record_raw_npts": self.raw_npts, "record_dt_s": self.dt,
+                 "record_scale": self.scale, "record_window_start_s": float(start),
+                 "record_window_end_s": float(end), "record_baseline": self.baseline,
+                 "record_pga_m_per_s2": self.pga, "record_pgv_m_per_s": self.pgv, "record_pgd_m": self.pgd}
+        if self.warning:
+            attrs["record_warning"] = self.warning
+        return attrs
 
     def __repr__(self):
-        return (f"Record({Path(self.source).name!r}, {self.npts} samples, t = {self.t_start:g}..{self.t_end:g} s, "
-                f"scale={self.scale:g}, baseline={self.baseline!r}, PGA={self.pga / G:.3f} g, PGD={self.pgd:.3f} m)")
+        return (f"Record({Path(self.source).name!r}, {self.quantity} in {self.units}, {self.npts} samples, "
+                f"t = {self.t_start:g}..{self.t_end:g} s, scale={self.scale:g}, baseline={self.baseline!r}, "
+                f"PGA={self.pga / G:.3f} g, PGD={self.pgd:.3f} m)")

@@ -10,10 +10,12 @@ from ._version import __version__
 from .constraints import Compliant
 from .excitation import step_times
 from .kinematics import CORNERS, all_corners, corner_diagnostics, interpenetration
-from .newton import NewtonOptions
+from .newton import ConvergenceError, NewtonOptions
 from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
 
 CAPACITY_POLICIES = ("continue", "stop", "error")
+FAILURE_POLICIES = ("raise", "mark")
+PLATES = ("RB1", "RB3")
 
 
 class CapacityError(ValueError):
@@ -21,52 +23,114 @@ class CapacityError(ValueError):
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
-             options: NewtonOptions = NewtonOptions(), capacity="continue",
-             attrs: dict | None = None) -> xr.Dataset:
+             options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="raise",
+             attrs: dict | None = None, progress=None) -> xr.Dataset:
     """Run one case and return its dataset.
 
     Parameters
     ----------
     geometry : Geometry (scalar fields).
-    excitation : ``excitation.Sine`` or ``excitation.Table``.
+    excitation : ``excitation.Sine``, ``excitation.Table`` or ``records.Record``.
     model : 'compliant' or 'stick_slip'.
     dt : time step (s); the steps are t_n = t_start + n dt up to the excitation's end.
     theta2_0 : pad rotation at t_0 (rad); the start is the compatible configuration there.
     normals : 'signed' (consistent) or 'unsigned' (the authors' |alpha|).
     options : Newton-Raphson tolerance and iteration cap.
-    capacity : what to do when the pad reaches a retaining ring: 'continue' (flag it: the
-        ``capacity_exceeded`` variable and the ``capacity_exceeded_at_s`` attribute), 'stop' (the
-        dataset ends at that step, flagged) or 'error' (raise CapacityError).
+    capacity : what to do when the pad reaches a retaining ring: 'continue' (flag it), 'stop'
+        (the dataset ends at that step) or 'error' (raise CapacityError). In every case the
+        attributes ``capacity_exceeded_at_s``, ``capacity_exceeded_plate`` (RB1 or RB3, the
+        plate whose ring is reached first) and ``capacity_exceeded_by_m`` (how far the pad
+        passes a ring at most) say when, where and by how much; ``stopped_at_s`` says where
+        'stop' ended the history.
+    on_failure : 'raise' (a ConvergenceError) or 'mark': the dataset holds the history up to
+        the last converged step, with the attributes ``failed`` = 1, ``failure_time_s`` (the
+        step that failed) and ``failure_message``.
     attrs : extra global attributes (e.g. a case id).
+    progress : optional callable ``progress(n, N)`` called after each step n of N.
+
+    A solver failure after the pad has passed a retaining ring says so first: beyond the ring
+    the model describes no real device, and a smaller dt does not help.
     """
     if model not in models.MODELS:
         raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
+    if on_failure not in FAILURE_POLICIES:
+        raise ValueError(f"on_failure must be one of {FAILURE_POLICIES}, got {on_failure!r}")
     if np.ndim(geometry.L) != 0:
         raise ValueError("simulate runs one case: geometry fields must be scalars")
     times = step_times(excitation, dt)
-    steps = []
-    for step in models.steps(model, geometry, excitation.displacement(times), theta2_0, normals=normals,
-                             options=options, times=times):
-        steps.append(step)
-        if capacity != "continue" and (corner_diagnostics(step["q"], geometry)[1] < 0).any():
-            break  # the pad reaches a ring: stop here (or fail below) before solving further
+    steps, failure = [], None
+    try:
+        for step in models.steps(model, geometry, excitation.displacement(times), theta2_0, normals=normals,
+                                 options=options, times=times):
+            steps.append(step)
+            if progress is not None:
+                progress(step["n"], len(times) - 1)
+            if capacity != "continue" and (corner_diagnostics(step["q"], geometry)[1] < 0).any():
+                break  # the pad reaches a ring: stop here (or fail below) before solving further
+    except ConvergenceError as err:
+        failure = _explain(err, geometry, [s["q"] for s in steps], times)
+        if on_failure == "raise":
+            raise failure from None
     ds = history_dataset(model, models.collect(steps), geometry, times[:len(steps)], excitation,
                          theta2_0=theta2_0, dt=dt, normals=normals, tol=options.tol, attrs=attrs)
-    exceeded = np.flatnonzero(ds["capacity_exceeded"].values)
-    if exceeded.size:
-        n = int(exceeded[0])
-        t = float(times[n])
-        plate = "RB1" if ds["clearance_1"].values[n] < 0 else "RB3"
+    ds.attrs["capacity_policy"] = capacity
+    ds.attrs["failed"] = int(failure is not None)
+    if failure is not None:
+        ds.attrs.update(failure_time_s=float(times[len(steps)]), failure_message=str(failure))
+    reached = ring_reached(ds["clearance_1"].values, ds["clearance_3"].values, ds["t"].values)
+    if reached:
         if capacity == "error":
-            raise CapacityError(f"the pad reaches the retaining ring of {plate} at t = {t:.6g} s (step {n}): the "
-                                f"excitation exceeds the device capacity (R1 sin(alpha1 - alpha21) = "
-                                f"{geometry.capacity1:.4g} m); lower the amplitude or set capacity: continue")
-        ds.attrs.update(capacity_exceeded_at_s=t, capacity_exceeded_plate=plate)
-        if capacity == "stop":
-            ds.attrs["capacity_policy"] = "stopped at the exceedance"
+            raise CapacityError(capacity_message(geometry, reached) +
+                                ": the excitation exceeds the device capacity; lower it, or set capacity: "
+                                "continue (flag it) or stop (end the history there)")
+        ds.attrs.update(capacity_exceeded_at_s=reached["t"], capacity_exceeded_plate=reached["plate"],
+                        capacity_exceeded_by_m=reached["by"])
+        if capacity == "stop" and len(steps) < len(times):
+            ds.attrs["stopped_at_s"] = float(times[len(steps) - 1])
     return ds
+
+
+def ring_reached(clearance_1, clearance_3, t) -> dict | None:
+    """When, where and by how much a history passes a retaining ring (None if it does not).
+
+    Returns {"t": first time a clearance is < 0 (s), "plate": "RB1" or "RB3" (the one passed
+    first; the deeper one if both at once), "by": the largest distance beyond a ring over the
+    history (m), "step": the index of that first time}.
+    """
+    gap = np.stack([clearance_1, clearance_3], axis=-1)
+    beyond = (gap < 0).any(axis=-1)
+    if not beyond.any():
+        return None
+    n = int(np.argmax(beyond))
+    return {"t": float(t[n]), "step": n, "plate": PLATES[int(np.argmin(gap[n]))],
+            "by": float(-np.nanmin(gap))}
+
+
+def capacity_message(geometry, reached, tense="reaches") -> str:
+    """'the pad reaches the retaining ring of RB3 at t = ... s (capacity R3 sin(alpha3 - alpha23)
+    = ... cm) and passes it by up to ... mm' (``tense="reached"``: the same in the past)."""
+    j = reached["plate"][-1]
+    capacity = geometry.capacity1 if j == "1" else geometry.capacity3
+    passes = "passes" if tense == "reaches" else "passed"
+    return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
+            f"(step {reached['step']}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
+            f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
+
+
+def _explain(err, geometry, qs, times):
+    """A solver failure, prefixed with the ring the pad passed before it (if it did)."""
+    if not qs:
+        return err
+    gap = corner_diagnostics(np.array(qs), geometry)[1]
+    reached = ring_reached(gap[:, 0], gap[:, 1], times[:len(qs)])
+    if reached is None:
+        return err
+    return err.with_hint(
+        "Beyond the ring the model describes no real device and a smaller dt does not help: set capacity: "
+        "stop to end the history at the ring, or lower the excitation.",
+        prefix=f"Before the solver failed, {capacity_message(geometry, reached, 'reached')}.")
 
 
 def breakaway(geometry, theta2_0, dXg, *, normals="signed",

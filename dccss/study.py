@@ -8,22 +8,28 @@ A study file (schema: ``workflow/schemas/study.schema.yaml``)::
     symmetric: true              # plate 3 and cap 23 follow plate 1 and cap 21
     excitation: {kind: sine, amplitude: 0.27, omega: 30.0, duration: 1.0}   # or table / record
     theta2_0: 0.0                # degrees
-    dt: 0.01                     # s
+    dt: 0.01                     # s (or a sweep axis; then this is the histories' default)
     models: [compliant, stick_slip]
     normals: signed
     sweep:                       # each axis a list or {start, stop, num} (linspace)
       alpha21: {start: 4.0, stop: 14.0, num: 21}
       h2: [0.08, 0.10, 0.12]
-    chunk_size: 200              # cases per job
+    chunk_size: auto             # cases per job: auto (default) splits each model's sweep in 4 jobs
     on_failure: mark             # a case the solver fails on: mark it (NaN, flag) or stop
+    capacity: continue           # the pad reaches a ring: continue (flag), stop (end there) or error
     marks: {DFP1: {alpha21: 10.0, h2: 0.15}}        # points drawn on the maps
     histories: [{alpha21: 10.0, h2: 0.15}]          # cases also run in full
 
 Sweep axes: ``prototype`` (a list of device names), any geometry parameter (overriding the
 device's), the excitation's ``amplitude`` and ``omega`` (sine),
 ``scale`` (multiplies X_g(t) of any excitation; recorded accelerations are processed
-linearly, so this equals scaling the record) and ``theta2_0``. Every sweep point is checked
-when the study is loaded, before any job runs.
+linearly, so this equals scaling the record), ``theta2_0`` and ``dt`` (the step; the cases of a
+chunk are solved in one batch per step size). Every sweep point is checked when the study is
+loaded, before any job runs.
+
+What each job reads is a part of the study file (``Study.parts``): the sweep chunks read the
+cases' definition, the histories their own case, the plots the description and marks, so a
+workflow reruns only the jobs whose part changed.
 """
 
 from __future__ import annotations
@@ -35,25 +41,30 @@ import numpy as np
 import xarray as xr
 
 from ._version import __version__
-from .case import Case, case_from, excitation_from, geometry_from, newton_from
+from .case import ON_FAILURE, Case, case_from, excitation_from, geometry_from, newton_from
 from .checks import CaseError, check_keys, choice, number
+from .excitation import step_times
 from .geometry import ANGLES, Geometry
 from .kinematics import NORMALS
 from .models import MODELS
-from .newton import NewtonOptions
+from .newton import ConvergenceError, NewtonOptions
 from .prototypes import TABLE1
 from .results import REFERENCE, _var
+from .simulation import CAPACITY_POLICIES, CapacityError
 from .sweep import STICK_ONLY, SUMMARIES, summarize
 
 GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
 EXCITATION_AXES = ("amplitude", "omega", "scale")
-AXES = ("prototype",) + GEOMETRY_KEYS + EXCITATION_AXES + ("theta2_0",)
+AXES = ("prototype",) + GEOMETRY_KEYS + EXCITATION_AXES + ("theta2_0", "dt")
 PLATE3_FOLLOWS = {"R3": "R1", "alpha3": "alpha1", "alpha23": "alpha21", "hr3": "hr1", "hmin3": "hmin1",
                   "tr3": "tr1"}
 KEYS = {"study", "prototypes", "prototype", "symmetric", "excitation", "theta2_0", "dt", "models", "normals", "sweep",
-        "chunk_size", "marks", "histories", "newton", "on_failure"}
-FAILURE_POLICIES = {"mark": "mark", "stop": "raise"}
-REQUIRED = ("study", "prototype", "excitation", "dt", "models", "sweep")
+        "chunk_size", "marks", "histories", "newton", "on_failure", "capacity"}
+REQUIRED = ("study", "prototype", "excitation", "models", "sweep")
+#: the keys that only the plots read: editing them reruns nothing else
+PLOT_KEYS = ("marks",)
+#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log)
+AUTO_CHUNKS = 4
 
 
 class StudyError(CaseError):
@@ -65,7 +76,7 @@ def axis_units(name):
         return None
     if name in ANGLES or name == "theta2_0":
         return "degree"
-    return {"omega": "rad s-1", "scale": "1"}.get(name, "m")
+    return {"omega": "rad s-1", "scale": "1", "dt": "s"}.get(name, "m")
 
 
 def axis_values(spec, key) -> np.ndarray:
@@ -93,11 +104,12 @@ class Study:
     excitation: object  # Sine, Table or Record (unscaled)
     excitation_spec: dict
     theta2_0: float  # degrees
-    dt: float
+    dt: float | None  # s; None if only a sweep axis gives it
     models: list
     normals: str
     axes: dict  # name -> values (ordered)
     chunk_size: int
+    capacity: str = "continue"
     marks: dict = field(default_factory=dict)
     histories: list = field(default_factory=list)
     options: NewtonOptions = field(default_factory=NewtonOptions)
@@ -151,33 +163,45 @@ class Study:
                 axes[key] = np.array(spec, dtype=str)
             else:
                 axes[key] = axis_values(spec, f"sweep.{key}")
-        chunk = config.get("chunk_size", 1000)
-        if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
-            raise StudyError(f"chunk_size: expected an integer >= 1, got {chunk!r}")
+        chunk = config.get("chunk_size", "auto")
+        if chunk != "auto" and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
+            raise StudyError(f"chunk_size: expected an integer >= 1 or 'auto', got {chunk!r}")
+        if chunk == "auto":
+            chunk = -(-int(np.prod([len(v) for v in axes.values()])) // AUTO_CHUNKS)
         geometry = geometry_from(proto)
         excitation = excitation_from(config["excitation"], base, geometry)
         kind = config["excitation"].get("kind")
         for key in ("amplitude", "omega"):
             if key in axes and kind != "sine":
                 raise StudyError(f"sweep.{key}: only a sine excitation has an {key}; use 'scale' for {kind!r}")
-        dt = number(config["dt"], "dt", positive=True)
+        if "dt" not in config and "dt" not in axes:
+            raise StudyError("dt: missing: give the time step (s), or sweep it (sweep.dt)")
+        dt = number(config["dt"], "dt", positive=True) if "dt" in config else None
         span = excitation.t_end - excitation.t_start
-        if dt > span:
-            raise StudyError(f"dt: {dt!r} s is larger than the excitation's duration {span!r} s")
+        for key, value in ([("dt", dt)] if dt is not None else []) + [
+                (f"sweep.dt[{i}]", float(v)) for i, v in enumerate(axes.get("dt", []))]:
+            if value <= 0:
+                raise StudyError(f"{key}: must be > 0, got {value!r}")
+            if value > span:
+                raise StudyError(f"{key}: {value!r} s is larger than the excitation's duration {span!r} s")
         options = newton_from(config.get("newton"))
-        policy = choice(config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
-        options = NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=FAILURE_POLICIES[policy])
+        policy = choice(config.get("on_failure", "mark"), "on_failure", ON_FAILURE)
+        options = NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=ON_FAILURE[policy])
         study = cls(name=name, description=str(meta.get("description", "")), prototype=dict(proto),
                     prototypes={k: dict(v) for k, v in known.items()},
                     symmetric=symmetric, excitation=excitation, excitation_spec=dict(config["excitation"]),
                     theta2_0=number(config.get("theta2_0", 0.0), "theta2_0"), dt=dt, models=list(models),
                     normals=choice(config.get("normals", "signed"), "normals", NORMALS), axes=axes,
-                    chunk_size=chunk, options=options, base=base)
+                    chunk_size=chunk, options=options, base=base,
+                    capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES))
         study.marks = study._points(config.get("marks", {}), "marks")
         histories = config.get("histories", [])
         if not isinstance(histories, list):
             raise StudyError(f"histories: expected a list of sweep points, got {histories!r}")
         study.histories = [study._point(p, f"histories[{i}]") for i, p in enumerate(histories)]
+        for i, point in enumerate(study.histories):
+            if dt is None and "dt" not in point:
+                raise StudyError(f"histories[{i}]: no dt: give it in the point or as the study's dt")
         study._check_grid()
         return study
 
@@ -246,14 +270,16 @@ class Study:
             params.update({k: params[src] for k, src in PLATE3_FOLLOWS.items()})
         return Geometry.from_degrees(**params)
 
-    def times(self):
-        from .excitation import step_times
+    def times(self, dt):
+        return step_times(self.excitation, dt)
 
-        return step_times(self.excitation, self.dt)
+    def dt_of(self, cases) -> np.ndarray:
+        """The time step of each case (s)."""
+        return self.values(cases).get("dt", np.full(len(cases), self.dt))
 
-    def ground_motion(self, cases):
-        """X_g (T, n) of the cases at the step times."""
-        values, t = self.values(cases), self.times()
+    def ground_motion(self, cases, t):
+        """X_g (T, n) of the cases at the step times t."""
+        values = self.values(cases)
         n = len(cases)
         if "amplitude" in values or "omega" in values:
             amp = values.get("amplitude", np.full(n, self.excitation.amplitude))
@@ -267,11 +293,27 @@ class Study:
         return np.radians(self.values(cases).get("theta2_0", np.full(len(cases), self.theta2_0)))
 
     # --- running ------------------------------------------------------------------------------
-    def run_chunk(self, model, k) -> xr.Dataset:
-        """Summaries of the cases of chunk k under ``model`` (dimension ``case``)."""
+    def run_chunk(self, model, k, progress=None) -> xr.Dataset:
+        """Summaries of the cases of chunk k under ``model`` (dimension ``case``): one batch per
+        time step; ``progress(done, total, dt)`` is called as cases are solved (for a log)."""
         cases = self.chunk(k)
-        out = summarize(model, self.geometry(cases), self.ground_motion(cases), self.theta2_0_of(cases),
-                        normals=self.normals, options=self.options, times=self.times())
+        dts = self.dt_of(cases)
+        parts = []
+        for dt in np.unique(dts):
+            group = cases[dts == dt]
+            times = self.times(dt)
+            report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
+            try:
+                out = summarize(model, self.geometry(group), self.ground_motion(group, times),
+                                self.theta2_0_of(group), normals=self.normals, options=self.options, times=times,
+                                capacity=self.capacity, progress=report)
+            except (ConvergenceError, CapacityError) as err:
+                index = getattr(err, "index", None)
+                where = self.point(group[index[0]]) if index else {}
+                raise type(err)(f"sweep point {where or 'of chunk ' + str(k)} ({model}): {err}") from None
+            parts.append((group, out))
+        order = np.argsort(np.concatenate([g for g, _ in parts]), kind="stable")
+        out = {name: np.concatenate([np.atleast_1d(o[name]) for _, o in parts])[order] for name in parts[0][1]}
         data = {name: _var(("case",), np.asarray(v), *SUMMARIES[name]) for name, v in out.items()}
         for flag in ("capacity_exceeded", "failed"):
             data[flag].data = data[flag].data.astype(np.int8)
@@ -306,6 +348,11 @@ class Study:
 
     def history_case(self, i, model) -> Case:
         """The i-th history point under ``model`` as a one-case Case (a full time history)."""
+        return case_from(self.history_mapping(i, model), self.base)
+
+    def history_mapping(self, i, model) -> dict:
+        """The case mapping (``dccss.case``) of the i-th history point under ``model``: all that its
+        result depends on (a workflow reruns the history when, and only when, this changes)."""
         point = self.histories[i]
         device = self.prototypes[point["prototype"]] if "prototype" in point else self.prototype
         full = {k: float(v) for k, v in device.items()}
@@ -313,22 +360,24 @@ class Study:
         if self.symmetric:
             full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
         excitation = dict(self.excitation_spec)
-        for key in ("amplitude", "omega"):
+        for key in ("amplitude", "omega", "scale"):
             if key in point:
                 excitation[key] = point[key]
-        mapping = {"id": f"{self.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
-                   "theta2_0": point.get("theta2_0", self.theta2_0), "dt": self.dt, "model": model,
-                   "normals": self.normals, "newton": {"tol": self.options.tol, "max_iter": self.options.max_iter}}
-        case = case_from(mapping, self.base)
-        if "scale" in point:
-            case.excitation = _Scaled(case.excitation, point["scale"])
-        return case
+        dt = point.get("dt", self.dt)
+        policy = {v: k for k, v in ON_FAILURE.items()}[self.options.on_failure]
+        return {"id": f"{self.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
+                "theta2_0": point.get("theta2_0", self.theta2_0), "dt": dt, "model": model,
+                "normals": self.normals, "newton": {"tol": self.options.tol, "max_iter": self.options.max_iter},
+                "capacity": self.capacity, "on_failure": policy}
 
     def attrs(self, model) -> dict:
-        out = {"Conventions": "CF-1.11", "title": f"dccss study {self.name}: {self.description}".strip(": "),
+        """Global attributes of the study's datasets (not the description: only the plots show it)."""
+        out = {"Conventions": "CF-1.11", "title": f"dccss study {self.name}",
                "source": f"dccss {__version__}", "references": REFERENCE, "dccss_version": __version__,
                "history": f"computed by dccss {__version__} (study {self.name})",
-               "study": self.name, "normals": self.normals, "dt_s": self.dt, "theta2_0_deg": self.theta2_0,
+               "study": self.name, "normals": self.normals, "theta2_0_deg": self.theta2_0,
+               "capacity_policy": self.capacity, "on_failure": self.options.on_failure,
+               **({"dt_s": self.dt} if self.dt is not None and "dt" not in self.axes else {}),
                "symmetric": int(self.symmetric), "sweep_axes": " ".join(self.axes),
                **{f"prototype_{k}": float(v) for k, v in self.prototype.items()}, **self.excitation.attrs()}
         if model:
@@ -336,34 +385,18 @@ class Study:
         return out
 
 
+def sweep_spec(config: dict, models=None) -> dict:
+    """The part of a study file that the sweep's results depend on: all but the description, the
+    marks and the histories (and, with ``models``, only those models)."""
+    spec = {k: v for k, v in config.items() if k not in ("marks", "histories")}
+    spec["study"] = {"name": config["study"]["name"]}
+    if models is not None:
+        spec["models"] = list(models)
+    return spec
+
+
 def _axis_var(dims, name, values):
     units = axis_units(name)
     if units is None:
         return xr.Variable(dims, np.asarray(values, dtype=object), {"long_name": f"sweep axis {name}"})
     return _var(dims, values, units, f"sweep axis {name}")
-
-
-@dataclass(frozen=True)
-class _Scaled:
-    """An excitation scaled by a constant factor."""
-
-    excitation: object
-    factor: float
-
-    @property
-    def t_start(self):
-        return self.excitation.t_start
-
-    @property
-    def t_end(self):
-        return self.excitation.t_end
-
-    def displacement(self, t):
-        return self.factor * self.excitation.displacement(t)
-
-    def velocity(self, t):
-        return self.factor * self.excitation.velocity(t)
-
-    def attrs(self):
-        return {**self.excitation.attrs(), "excitation_scale": self.factor}
-

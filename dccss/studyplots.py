@@ -1,124 +1,602 @@
-"""Standard plots of a study: summary maps over the sweep axes and time histories of chosen cases.
+"""Standard plots of a study: summaries over the sweep axes and time histories of chosen points.
 
-Maps use the first two sweep axes (one axis: curves); further axes are shown at their first
-value, as the panel titles say. Paper units: degrees, cm, mm or µm.
+``maps`` draws the combined study dataset (dimension ``model`` plus one per sweep axis):
+
+* two or more numeric axes: maps over the first two, one row per model, the cells where the pad
+  reached a retaining ring or the solver failed hatched; further axes at their first value;
+* one numeric axis: curves with markers, one per model (and per category of ``prototype``);
+* a categorical axis only (``prototype``): one mark per model and category at integer positions.
+
+``histories`` draws, for each history point, the ground displacement, θ², the rise of RB3 and
+the largest corner interpenetration against time, one column per point, with the times at which
+the pad reached a retaining ring or the solver failed.
+
+The datasets are SI (angles in degrees); the plots are in paper units: degrees, cm, mm.
 """
 
 from __future__ import annotations
 
-import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
+import re
+import textwrap
 
-#: (summary variable, label, scale to paper units, unit)
-MAP_VARIABLES = [
+import numpy as np
+from matplotlib.collections import LineCollection, PatchCollection
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch, Rectangle
+from matplotlib.ticker import NullLocator
+
+from .plotting import CAPTION_INCHES, _figure
+from .results import MODEL_TITLES
+from .sweep import STICK_ONLY
+
+#: how each model is drawn: compliant wide and solid underneath, stick-slip narrow and dashed on top
+MODEL_LINE = {
+    "compliant": dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
+    "stick_slip": dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3),
+}
+MODEL_MARKER = {
+    "compliant": dict(marker="o", ms=8, mfc="none", mew=1.8),
+    "stick_slip": dict(marker="D", ms=4.5, mew=0.8),
+}
+OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))
+GROUP_MARKERS = ("o", "s", "^", "v", "P", "*")
+CAPACITY_COLOUR, FAILED_COLOUR = "crimson", "0.25"
+EVENT_LINE = {"capacity": dict(ls=(0, (1, 1.5)), lw=1.6), "failure": dict(ls=(0, (6, 2, 1, 2)), lw=1.6)}
+LOG_AXES = ("dt",)
+MAX_VALUE_TICKS = 8  # a swept axis with at most this many values is ticked at its values
+POINTS_PER_ROW = 3  # history points side by side; more go to a block below
+COLUMN_INCHES = 3.9  # width of a history point's column
+
+#: (summary variable, label, factor to plot units, plot unit)
+SUMMARY_VARIABLES = [
     ("theta2_max_abs", "max |θ²|", 1.0, "°"),
     ("sticking_rotation_max", "max sticking rotation", 1.0, "°"),
     ("rise_max", "max rise of RB3", 100.0, "cm"),
-    ("interpenetration_max", "max interpenetration", 1e3, "mm"),
+    ("interpenetration_max", "max interpenetration (corners)", 1e3, "mm"),
 ]
+#: (history variable, label, factor to plot units, plot unit)
+HISTORY_ROWS = [
+    ("Xg", "ground displacement $X_g$", 100.0, "cm"),
+    ("theta2", "pad rotation θ²", 1.0, "°"),
+    ("rise", "rise of RB3", 100.0, "cm"),
+    ("interpenetration", "max $|I|$ of the corners", 1e3, "mm"),
+]
+AXIS_SYMBOLS = {"amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$", "theta2_0": "$θ^2(t_0)$",
+                "dt": "Δt", "prototype": "prototype"}
+GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
+UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
 
-def _label(name, ds):
+# --- styles and labels -------------------------------------------------------------------------
+def _ordered(models):
+    """Model names in a fixed order: compliant, stick-slip, then any other by name."""
+    known = [m for m in MODEL_LINE if m in models]
+    return known + sorted(m for m in models if m not in MODEL_LINE)
+
+
+def _line(model, models):
+    """Colour, line style and width of a model (the same in every panel and figure)."""
+    if model in MODEL_LINE:
+        return MODEL_LINE[model]
+    others = [m for m in models if m not in MODEL_LINE]
+    return OTHER_LINES[others.index(model) % len(OTHER_LINES)]
+
+
+def _marker(model):
+    return MODEL_MARKER.get(model, dict(marker="s", ms=5, mew=0.8))
+
+
+def _title(model):
+    return MODEL_TITLES.get(model, model)
+
+
+def _symbol(name):
+    """The paper's symbol of a sweep axis (e.g. alpha21 -> α²¹); the name itself if it has none."""
+    if name in AXIS_SYMBOLS:
+        return AXIS_SYMBOLS[name]
+    match = re.fullmatch(r"(alpha|hmin|hr|tr|h|R)(\d+)", name)
+    if match:
+        return f"${GEOMETRY_SYMBOLS.get(match[1], match[1])}^{{{match[2]}}}$"
+    return name
+
+
+def _axis_unit(ds, name):
+    """(factor to plot units, unit) of a sweep axis: its units, a ground amplitude in cm."""
     units = ds[name].attrs.get("units")
-    unit = {"degree": "°", "m": "m", "1": "", "rad s-1": "rad/s"}.get(units, units or "")
-    return f"{name} ({unit})" if unit else name
+    if name == "amplitude" and units == "m":
+        return 100.0, "cm"
+    return 1.0, UNIT_TEXT.get(units, units or "")
 
 
-def _positions(ds, name):
-    values = ds[name].values
-    if values.dtype.kind in "OUS":  # a categorical axis (device names)
-        return np.arange(len(values), dtype=float), [str(v) for v in values]
-    return values.astype(float), None
+def _axis_label(ds, name):
+    unit = _axis_unit(ds, name)[1]
+    return f"{_symbol(name)} ({unit})" if unit else _symbol(name)
 
 
-def maps(ds, marks: dict, caption: str) -> Figure:
-    """One row per model, one column per summary variable (max over corners for the interpenetration)."""
-    axes_names = ds.attrs["sweep_axes"].split()
-    ds = ds.assign(interpenetration_max=ds[["I_A_max", "I_B_max", "I_C_max", "I_D_max"]].to_array().max("variable"))
-    fixed = {name: ds[name].values[0] for name in axes_names[2:]}
-    ds = ds.isel({name: 0 for name in axes_names[2:]})
-    variables = [v for v in MAP_VARIABLES if v[0] in ds and np.isfinite(ds[v[0]].values).any()]
-    models = [str(m) for m in ds["model"].values]
-    height = 3.6 * len(models) + 0.6
-    fig = Figure(figsize=(4.2 * len(variables), height), dpi=150, layout="constrained")
-    fig.get_layout_engine().set(rect=(0, 0.3 / height, 1, 1 - 0.3 / height))  # room for the caption
-    FigureCanvasAgg(fig)
-    axs = fig.subplots(len(models), len(variables), squeeze=False)
-    x_name = axes_names[0]
-    x, x_ticks = _positions(ds, x_name)
-    for r, model in enumerate(models):
-        for c, (name, label, scale, unit) in enumerate(variables):
-            ax = axs[r, c]
-            data = ds[name].sel(model=model)
-            if not np.isfinite(data.values).any():  # e.g. the sticking rotation of compliant sliding
-                ax.set_axis_off()
-                ax.text(0.5, 0.5, f"{label}:\nnot defined for {model}", ha="center", va="center",
-                        transform=ax.transAxes, color="0.4")
-                continue
-            exceeded = ds["capacity_exceeded"].sel(model=model).values.astype(bool)
-            failed = ds["failed"].sel(model=model).values.astype(bool)
-            if len(axes_names) == 1:
-                ax.plot(x, scale * data.values, "o-", ms=3)
-                ax.plot(x[exceeded], scale * data.values[exceeded], "rx", label="capacity exceeded")
-                ax.set_ylabel(f"{label} ({unit})")
-            else:
-                y, y_ticks = _positions(ds, axes_names[1])
-                mesh = ax.pcolormesh(x, y, scale * data.values.T, shading="nearest", cmap="viridis")
-                fig.colorbar(mesh, ax=ax, label=f"{label} ({unit})")
-                if exceeded.any():
-                    ax.contour(x, y, exceeded.T.astype(float), levels=[0.5], colors="red", linewidths=1.2)
-                if failed.any():
-                    ax.contourf(x, y, failed.T.astype(float), levels=[0.5, 1.5], colors="none", hatches=["///"])
-                    ax.contour(x, y, failed.T.astype(float), levels=[0.5], colors="0.3", linewidths=0.8)
-                for mark, point in marks.items():
-                    px = _mark_position(ds, x_name, point)
-                    py = _mark_position(ds, axes_names[1], point)
-                    if px is not None and py is not None:
-                        ax.plot(px, py, "w*", ms=11, mec="k")
-                        ax.annotate(mark, (px, py), xytext=(4, 4), textcoords="offset points", fontsize=8,
-                                    color="w", path_effects=None, bbox={"fc": "k", "alpha": 0.4, "pad": 1})
-                ax.set_ylabel(_label(axes_names[1], ds))
-                if y_ticks:
-                    ax.set_yticks(y, y_ticks)
-            ax.set_xlabel(_label(x_name, ds))
-            if x_ticks:
-                ax.set_xticks(x, x_ticks)
-            ax.set_title(f"{model}: {label}", fontsize=10)
-    note = ", ".join(f"{k} = {v}" for k, v in fixed.items())
-    fig.suptitle(f"Study {ds.attrs['study']}: summaries over the sweep" + (f" ({note})" if note else ""))
-    fig.text(0.5, 0.002, caption + " — red line: pad reaches a retaining ring; hatched: no solution (failed)",
-             ha="center", va="bottom", fontsize=8, style="italic")
+def _value_text(ds, name, value):
+    """'α²¹ = 10°', 'h² = 0.15 m', 'prototype = DFP1'."""
+    if _categorical(ds, name):
+        return f"{_symbol(name)} = {value}"
+    factor, unit = _axis_unit(ds, name)
+    space = "" if unit in ("", "°") else " "
+    return f"{_symbol(name)} = {factor * float(value):.4g}{space}{unit}"
+
+
+def _legend_rows(groups, width):
+    """Groups of legend handles as rows of a table (one line if they all fit in ``width`` inches)."""
+    handles = [h for group in groups for h in group]
+    if sum(0.6 + 0.065 * len(h.get_label()) for h in handles) < 0.95 * width:
+        return [handles]
+    return [group for group in groups if group]
+
+
+def _complete(fig, title, caption, groups):
+    """The title over a legend at the top (a row per group of handles if one line is too long), the
+    caption line at the bottom; the layout is then computed once and frozen."""
+    rows = _legend_rows(groups, fig.get_figwidth())
+    ncols = max(1, *(len(row) for row in rows))
+    blank = Line2D([], [], ls="none", label=" ")
+    table = [row + [blank] * (ncols - len(row)) for row in rows]
+    by_columns = [row[c] for c in range(ncols) for row in table]  # the legend fills its columns first
+    fig.legend(handles=by_columns, loc="outside upper center", ncols=ncols, fontsize=9, frameon=False, title=title,
+               title_fontsize=12)
+    fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
+             fontsize=9, style="italic", color="0.25")
+    fig.draw_without_rendering()
+    fig.set_layout_engine(None)
+    for ax in fig.axes:  # rounded: the same PDF coordinates in every run
+        ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
     return fig
+
+
+# --- time histories ------------------------------------------------------------------------------
+def histories(points: list, caption: str) -> Figure:
+    """Time histories of the history points of a study, one column per point.
+
+    Parameters
+    ----------
+    points : list of (label, {model: dataset}); each dataset a history of ``dccss.simulate``
+        (time coordinate ``t`` in s), possibly cut short by the capacity policy or a solver failure.
+    caption : line printed at the bottom of the figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Per point a column of four panels sharing the time axis: ground displacement X_g (cm),
+        θ² (°), rise of RB3 (cm), largest |I| of the corners (mm); up to three columns side by
+        side, further points in a second block below. The models are told apart by colour and
+        line style; dotted and dash-dotted vertical lines mark where the pad reached a retaining
+        ring and where the solver failed, and the column title says so (and whether the capacity
+        policy cut the history).
+    """
+    if not points:
+        raise ValueError("histories: no history points to draw")
+    models = _ordered({m for _, runs in points for m in runs})
+    rows, ncols = len(HISTORY_ROWS), min(len(points), POINTS_PER_ROW)
+    blocks = -(-len(points) // POINTS_PER_ROW)
+    fig, axs = _figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks), rows * blocks, ncols)
+    events = set()
+    for k, (label, runs) in enumerate(points):
+        block, c = divmod(k, POINTS_PER_ROW)
+        col = axs[rows * block:rows * (block + 1), c]
+        _share_time(col, ylabels=c == 0)
+        events |= _history_column(col, f"({_letter(k)}) {label}", runs, models)
+    for ax in _unused(axs, len(points), rows):
+        ax.set_visible(False)
+    lines = [Line2D([], [], color="k", lw=1.2, label="$X_g$, imposed ground motion")]
+    lines += [Line2D([], [], **_line(m, models), label=_title(m)) for m in models]
+    return _complete(fig, "Time histories at the study's history points", caption, [lines, _event_handles(events)])
+
+
+def _share_time(col, ylabels):
+    """One time axis for the panels of a point, labelled at the bottom; quantities on the left."""
+    for ax in col[1:]:
+        ax.sharex(col[0])
+    for ax in col[:-1]:
+        ax.tick_params(labelbottom=False)
+    col[-1].set_xlabel("t (s)")
+    if ylabels:
+        for ax, (_, name, _, unit) in zip(col, HISTORY_ROWS):
+            ax.set_ylabel(f"{name} ({unit})")
+
+
+def _unused(axs, n, rows):
+    """The axes of the empty places in the last block of columns."""
+    ncols = axs.shape[1]
+    return [ax for k in range(n, axs.shape[0] // rows * ncols)
+            for ax in axs[rows * (k // ncols):rows * (k // ncols + 1), k % ncols]]
+
+
+def _letter(k):
+    return "abcdefghijklmnopqrstuvwxyz"[k % 26]
+
+
+def _history_column(col, label, runs, models):
+    """Draw one history point in a column of axes; return the kinds of events drawn."""
+    ground = max(runs.values(), key=lambda ds: ds.sizes["t"])
+    col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground["Xg"].values, color="k", lw=1.2)
+    events, notes = set(), []
+    for slot, model in enumerate(m for m in models if m in runs):
+        ds, style = runs[model], _line(model, models)
+        t = ds["t"].values
+        for ax, (name, _, factor, _) in zip(col[1:], HISTORY_ROWS[1:]):
+            ax.plot(t, factor * _history_values(ds, name), **style)
+        for kind, time, tag in _events(ds):
+            events.add(kind)
+            for ax in col:  # as wide as the model's curve: coinciding lines of two models stay visible
+                ax.axvline(time, color=style["color"], zorder=style["zorder"] + 3,
+                           **{**EVENT_LINE[kind], "lw": 0.8 * style["lw"]})
+            side = 1 if slot % 2 and kind == "capacity" else -1  # a second model's ring tag right of its line
+            col[0].annotate(tag, (time, 0.97), xycoords=("data", "axes fraction"), rotation=90,
+                            ha="left" if side > 0 else "right", va="top", fontsize=7, color=style["color"],
+                            xytext=(2 * side, 0), textcoords="offset points",
+                            bbox=dict(fc="w", ec="none", alpha=0.8, pad=0.5))
+        notes += _notes(ds, model)
+    for ax in col:
+        ax.grid(True, color="0.9", lw=0.6)
+        ax.axhline(0, color="0.6", lw=0.6, zorder=1)
+    wrapped = [textwrap.fill(note, width=int(15 * COLUMN_INCHES), subsequent_indent="  ") for note in notes]
+    col[0].set_title("\n".join([label, *wrapped]), loc="left", fontsize=9)
+    return events
+
+
+def _history_values(ds, name):
+    """A history row's values in SI units; "interpenetration" is the largest |I| of the corners A..D."""
+    if name == "interpenetration":
+        return np.max(np.abs([ds[f"I_{c}"].values for c in "ABCD"]), axis=0)
+    return ds[name].values
+
+
+def _failed(ds):
+    if "failed" in ds.attrs:
+        return bool(int(ds.attrs["failed"]))
+    return "failed" in ds and bool(np.any(ds["failed"].values))
+
+
+def _stop_time(ds):
+    """Time at which the capacity policy 'stop' cut the history (None if it was not cut)."""
+    if "stopped_at_s" in ds.attrs:
+        return float(ds.attrs["stopped_at_s"])
+    if str(ds.attrs.get("capacity_policy", "")).startswith("stopped"):
+        return float(ds["t"].values[-1])
+    return None
+
+
+def _events(ds):
+    """(kind, time, short text) of the capacity exceedance and of the solver failure of a history."""
+    out = []
+    if "capacity_exceeded_at_s" in ds.attrs:
+        out.append(("capacity", float(ds.attrs["capacity_exceeded_at_s"]),
+                    f"{ds.attrs.get('capacity_exceeded_plate', '')} ring".strip()))
+    if _failed(ds):
+        out.append(("failure", float(ds.attrs.get("failure_time_s", ds["t"].values[-1])), "failed"))
+    return out
+
+
+def _notes(ds, model):
+    """The events of a history in one line (empty if none), for the column title."""
+    parts = []
+    if "capacity_exceeded_at_s" in ds.attrs:
+        reached = float(ds.attrs["capacity_exceeded_at_s"])
+        text = f"{ds.attrs.get('capacity_exceeded_plate', 'a')} ring reached at {reached:.4g} s"
+        if "capacity_exceeded_by_m" in ds.attrs:
+            text += f" (up to {100.0 * float(ds.attrs['capacity_exceeded_by_m']):.2g} cm beyond)"
+        parts.append(text)
+    stop = _stop_time(ds)
+    if stop is not None:
+        parts.append(f"history cut at {stop:.4g} s (capacity policy 'stop')")
+    if _failed(ds):
+        time = float(ds.attrs.get("failure_time_s", ds["t"].values[-1]))
+        message = _failure_reason(str(ds.attrs.get("failure_message", "")))
+        parts.append(f"solver failed at {time:.4g} s" + (f": {message}" if message else ""))
+    return [f"{_title(model)}: " + "; ".join(parts)] if parts else []
+
+
+def _failure_reason(message):
+    """The sentence of a solver message that says what did not converge, shortened to 90 characters."""
+    sentences = re.split(r"(?<=\.)\s+", " ".join(message.split()))
+    reason = next((s for s in sentences if "converge" in s), sentences[0])
+    return textwrap.shorten(reason, 90, placeholder=" …") if reason else ""
+
+
+def _event_handles(kinds):
+    labels = {"capacity": "pad reaches a retaining ring", "failure": "solver failed (history ends)"}
+    return [Line2D([], [], color="0.3", **EVENT_LINE[kind], label=labels[kind]) for kind in EVENT_LINE if kind in kinds]
+
+
+# --- summaries over the sweep ---------------------------------------------------------------------
+def maps(ds, marks: dict, caption: str) -> Figure:
+    """Summaries of a study over its sweep axes.
+
+    Parameters
+    ----------
+    ds : the combined study dataset: dimension ``model`` and one per sweep axis (attribute
+        ``sweep_axes``, in order); summaries as written by ``Study.combine``.
+    marks : {label: {axis: value}}, points to draw (values in the study file's units).
+    caption : line printed at the bottom of the figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two or more numeric axes of more than one value: maps over the first two (one row per
+        model), with the cells where the pad reached a retaining ring hatched in red and the
+        failed cells hatched in grey; one numeric axis: curves with markers (one per model, and
+        per category of a categorical axis), capacity points boxed in red, failed points marked
+        ✕ on the bottom edge; a categorical axis only: marks per category at integer positions.
+        Any further axis is shown at its first value, as the title says.
+    """
+    ds = ds.assign(interpenetration_max=ds[[f"I_{c}_max" for c in "ABCD"]].to_array().max("variable"))
+    kind, drawn, fixed = _plan(ds)
+    ds = ds.isel({name: 0 for name in fixed})
+    ds = ds.sortby([name for name in drawn if not _categorical(ds, name)])
+    models = _ordered([str(m) for m in ds["model"].values])
+    variables = [v for v in SUMMARY_VARIABLES if v[0] in ds and any(_defined(ds, v[0], m) for m in models)]
+    if kind == "map":
+        fig, axs = _figure((4.2 * len(variables) + 0.6, 3.5 * len(models) + 1.6), len(models), len(variables))
+        legend = _draw_maps(fig, axs, ds, drawn, marks, variables, models)
+        what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}"
+    else:
+        fig, axs = _figure((4.1 * len(variables), 5.0), 1, len(variables))
+        draw = _draw_lines if kind == "lines" else _draw_categories
+        legend = draw(axs[0], ds, drawn, marks, variables, models)
+        what = f"summaries against {_symbol(drawn[0])}" + (f" per {_symbol(drawn[1])}" if len(drawn) > 1 else "")
+    title = f"Study {ds.attrs.get('study', '')}: {what}"
+    if fixed:
+        title += "\n" + _fixed_note(ds, fixed)
+    return _complete(fig, title, caption, legend)
+
+
+def _defined(ds, name, model):
+    """Whether a summary exists for a model: not a stick-slip quantity of another model, and a value
+    somewhere or no point the solver completed (then every point is marked failed)."""
+    if name in STICK_ONLY and model != "stick_slip":
+        return False
+    sel = ds.sel(model=model)
+    return bool(np.isfinite(sel[name].values).any() or sel["failed"].values.all())
+
+
+def _categorical(ds, name):
+    return ds[name].values.dtype.kind in "OUS"
+
+
+def _plan(ds):
+    """(kind, drawn axes, {further axis: its number of values}) for the sweep axes of ``ds``.
+
+    Axes of one value are never drawn; two numeric axes make maps, one numeric axis curves (a
+    categorical axis then gives one curve per category), a categorical axis alone marks per category.
+    """
+    names = ds.attrs["sweep_axes"].split()
+    spread = [n for n in names if ds.sizes[n] > 1]
+    numeric = [n for n in spread if not _categorical(ds, n)]
+    categorical = [n for n in spread if _categorical(ds, n)]
+    if len(numeric) >= 2:
+        kind, drawn = "map", numeric[:2]
+    elif numeric:
+        kind, drawn = "lines", numeric + categorical[:1]
+    elif categorical:
+        kind, drawn = "categories", categorical[:1]
+    else:  # a single sweep point
+        kind, drawn = "categories" if _categorical(ds, names[0]) else "lines", names[:1]
+    return kind, drawn, {n: ds.sizes[n] for n in names if n not in drawn}
+
+
+def _fixed_note(ds, fixed):
+    """'h² = 0.15 m; prototype = DFP1 (first of 2 values, the others not drawn)'."""
+    parts = [_value_text(ds, name, ds[name].values[()]) + (f" (first of {size} values, the others not drawn)"
+                                                           if size > 1 else "") for name, size in fixed.items()]
+    return "at " + "; ".join(parts)
+
+
+def _plot_values(ds, name):
+    factor = _axis_unit(ds, name)[0]
+    return factor * ds[name].values.astype(float)
+
+
+def _edges(centres, log):
+    """Cell edges around sorted cell centres: midpoints (geometric on a log axis), ends mirrored."""
+    c = np.log(centres) if log else np.asarray(centres, dtype=float)
+    mid = 0.5 * (c[1:] + c[:-1])
+    edges = np.concatenate([[2 * c[0] - mid[0]], mid, [2 * c[-1] - mid[-1]]])
+    return np.exp(edges) if log else edges
+
+
+def _flags(ds, model, *dims):
+    """(capacity exceeded, failed) boolean arrays of a model, dimensions ordered as ``dims``."""
+    sel = ds.sel(model=model)
+    return tuple(sel[f].transpose(*dims).values.astype(bool) for f in ("capacity_exceeded", "failed"))
+
+
+def _flag_labels(ds, models, dims):
+    """Legend labels of the capacity and failure marks with their counts per model."""
+    total = int(np.prod([ds.sizes[d] for d in dims]))
+    counts = [_flags(ds, m, *dims) for m in models]
+    cap = ", ".join(f"{_title(m)} {int(c.sum())}" for m, (c, _) in zip(models, counts))
+    fail = ", ".join(f"{_title(m)} {int(f.sum())}" for m, (_, f) in zip(models, counts))
+    return (f"pad reaches a retaining ring ({cap} of {total})", f"solver failed, no result ({fail} of {total})")
+
+
+def _undefined(ax, label, model):
+    ax.set_axis_off()
+    ax.text(0.5, 0.5, f"{label}:\nnot defined for {_title(model)}", ha="center", va="center",
+            transform=ax.transAxes, color="0.4")
+
+
+def _draw_maps(fig, axs, ds, drawn, marks, variables, models):
+    """One row per model, one column per variable (a colour bar per column); the legend's groups of handles."""
+    x, y = drawn
+    logs = [name in LOG_AXES for name in drawn]
+    xe, ye = (_edges(_plot_values(ds, n), log) for n, log in zip(drawn, logs))
+    for c, (name, label, factor, unit) in enumerate(variables):
+        values = factor * ds[name].transpose("model", x, y).values
+        finite = values[np.isfinite(values)]
+        vmin, vmax = (finite.min(), finite.max()) if finite.size else (0.0, 1.0)
+        mesh = None
+        for r, model in enumerate(models):
+            ax, data = axs[r, c], factor * ds[name].sel(model=model).transpose(x, y).values
+            if not _defined(ds, name, model):
+                _undefined(ax, label, model)
+                continue
+            mesh = ax.pcolormesh(xe, ye, data.T, cmap="viridis", vmin=vmin, vmax=vmax)
+            capacity, failed = _flags(ds, model, x, y)
+            _hatch(ax, capacity, xe, ye, "capacity_exceeded", CAPACITY_COLOUR, "///", "none")
+            _hatch(ax, failed, xe, ye, "failed", FAILED_COLOUR, "xx", "0.85")
+            _map_marks(ax, ds, drawn, marks)
+            _scale(ax, "x", x, _plot_values(ds, x))
+            _scale(ax, "y", y, _plot_values(ds, y))
+            ax.set_xlim(xe[0], xe[-1])
+            ax.set_ylim(ye[0], ye[-1])
+            ax.set_xlabel(_axis_label(ds, x))
+            ax.set_ylabel(_axis_label(ds, y))
+            ax.set_title(f"{_title(model)}: {label}", fontsize=10)
+        if mesh is not None:
+            fig.colorbar(mesh, ax=list(axs[:, c]), label=f"{label} ({unit})", shrink=0.9)
+    cap_label, fail_label = _flag_labels(ds, models, drawn)
+    flags = [Patch(fc="none", ec=CAPACITY_COLOUR, hatch="///", label=cap_label),
+             Patch(fc="0.85", ec=FAILED_COLOUR, hatch="xx", label=fail_label)]
+    if any(_mark_point(ds, drawn, p) for p in marks.values()):
+        return [flags, [Line2D([], [], ls="none", marker="*", ms=11, mfc="w", mec="k", label="marked points")]]
+    return [flags]
+
+
+def _hatch(ax, mask, xe, ye, gid, colour, hatch, face):
+    """Hatch exactly the cells of ``mask`` (x, y) and outline them along the cell edges."""
+    cells = [Rectangle((xe[i], ye[j]), xe[i + 1] - xe[i], ye[j + 1] - ye[j]) for i, j in zip(*np.nonzero(mask))]
+    if not cells:
+        return
+    patches = PatchCollection(cells, fc=face, ec=colour, lw=0.0, hatch=hatch, zorder=2)
+    patches.set_gid(gid)
+    ax.add_collection(patches)
+    outline = LineCollection(_outline(mask, xe, ye), colors=colour, linewidths=1.2, zorder=3)
+    outline.set_gid(gid + "_outline")
+    ax.add_collection(outline)
+
+
+def _outline(mask, xe, ye):
+    """Segments of the cell edges that separate flagged from unflagged cells (or the grid's border)."""
+    padded = np.pad(mask, 1)
+    across_x = padded[1:, 1:-1] != padded[:-1, 1:-1]  # edge at xe[i] from ye[j] to ye[j + 1]
+    across_y = padded[1:-1, 1:] != padded[1:-1, :-1]  # edge at ye[j] from xe[i] to xe[i + 1]
+    return ([[(xe[i], ye[j]), (xe[i], ye[j + 1])] for i, j in zip(*np.nonzero(across_x))]
+            + [[(xe[i], ye[j]), (xe[i + 1], ye[j])] for i, j in zip(*np.nonzero(across_y))])
 
 
 def _mark_position(ds, name, point):
+    """Plot coordinate of a marked point on an axis (category index, or value in plot units)."""
     if name not in point:
         return None
-    values = ds[name].values
-    if values.dtype.kind in "OUS":
-        hits = [i for i, v in enumerate(values) if str(v) == str(point[name])]
+    if _categorical(ds, name):
+        hits = [i for i, v in enumerate(ds[name].values) if str(v) == str(point[name])]
         return float(hits[0]) if hits else None
-    return float(point[name])
+    return _axis_unit(ds, name)[0] * float(point[name])
 
 
-def histories(datasets: list, caption: str) -> Figure:
-    """theta2, rise and max |interpenetration| against time for (label, dataset) pairs."""
-    fig = Figure(figsize=(13, 8), dpi=150, layout="constrained")
-    fig.get_layout_engine().set(rect=(0, 0.3 / 8, 1, 1 - 0.3 / 8))
-    FigureCanvasAgg(fig)
-    axs = fig.subplots(3, 1, sharex=True)
-    for label, ds in datasets:
-        t = ds["t"].values
-        interp = np.max([ds[f"I_{c}"].values for c in "ABCD"], axis=0)
-        axs[0].plot(t, ds["theta2"].values, lw=1, label=label)
-        axs[1].plot(t, 100 * ds["rise"].values, lw=1, label=label)
-        axs[2].plot(t, 1e3 * interp, lw=1, label=label)
-    axs[0].set_ylabel("θ² (°)")
-    axs[1].set_ylabel("rise of RB3 (cm)")
-    axs[2].set_ylabel("max interpenetration (mm)")
-    axs[2].set_xlabel("t (s)")
-    axs[0].legend(fontsize=8, ncols=2)
-    fig.suptitle("Time histories of selected study cases")
-    fig.text(0.5, 0.0, caption, ha="center", va="bottom", fontsize=8, style="italic")
-    return fig
+def _mark_point(ds, drawn, point):
+    """Coordinates of a marked point on the drawn axes (None when it does not name them all)."""
+    where = [_mark_position(ds, name, point) for name in drawn]
+    return None if any(v is None for v in where) else where
+
+
+def _map_marks(ax, ds, drawn, marks):
+    for label, point in marks.items():
+        where = _mark_point(ds, drawn, point)
+        if where:
+            ax.plot(*where, ls="none", marker="*", ms=12, mfc="w", mec="k", zorder=6)
+            ax.annotate(label, where, xytext=(5, 5), textcoords="offset points", fontsize=8, color="w", zorder=6,
+                        bbox={"fc": "k", "alpha": 0.5, "pad": 1, "lw": 0})
+
+
+def _line_marks(ax, ds, name, marks):
+    """A dotted vertical line and its label at each marked value of the x axis."""
+    for label, point in marks.items():
+        x = _mark_position(ds, name, point)
+        if x is not None:
+            ax.axvline(x, color="0.45", ls=":", lw=1.0, zorder=1)
+            ax.annotate(label, (x, 0.99), xycoords=("data", "axes fraction"), rotation=90, ha="right", va="top",
+                        fontsize=7, color="0.35", xytext=(-2, 0), textcoords="offset points")
+
+
+def _flag_marks(ax, x, values, capacity, failed, colour, slot):
+    """Red boxes around the points beyond capacity; ✕ on the bottom edge where the solver failed."""
+    if capacity.any():
+        ax.plot(x[capacity], values[capacity], ls="none", marker="s", ms=14, mfc="none", mec=CAPACITY_COLOUR,
+                mew=1.4, zorder=6, gid="capacity_exceeded")
+    if failed.any():
+        ax.plot(x[failed], np.full(failed.sum(), 0.04 + 0.07 * slot), ls="none", marker="X", ms=9, color=colour,
+                mec="k", mew=0.6, transform=ax.get_xaxis_transform(), clip_on=False, zorder=6, gid="failed")
+
+
+def _flag_handles(ds, models, dims):
+    cap_label, fail_label = _flag_labels(ds, models, dims)
+    return [Line2D([], [], ls="none", marker="s", ms=11, mfc="none", mec=CAPACITY_COLOUR, mew=1.4, label=cap_label),
+            Line2D([], [], ls="none", marker="X", ms=9, color="0.6", mec="k", mew=0.6,
+                   label=fail_label + ", marked on the bottom edge")]
+
+
+def _draw_lines(axs, ds, drawn, marks, variables, models):
+    """One panel per variable: the summary against the numeric axis, a curve per model (and category)."""
+    x_name = drawn[0]
+    x = _plot_values(ds, x_name)
+    groups = list(ds[drawn[1]].values) if len(drawn) > 1 else [None]
+    for ax, (name, label, factor, unit) in zip(axs, variables):
+        slot = 0
+        for model in (m for m in models if _defined(ds, name, m)):
+            style = _line(model, models)
+            for g, group in enumerate(groups):
+                sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
+                values = factor * sel[name].values
+                shape = {} if group is None else {"marker": GROUP_MARKERS[g % len(GROUP_MARKERS)]}
+                marker = dict(_marker(model), **shape)
+                ax.plot(x, values, **style, **marker)
+                capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
+                _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
+                slot += 1
+        _line_marks(ax, ds, x_name, marks)
+        _scale(ax, "x", x_name, x)
+        ax.set_xlabel(_axis_label(ds, x_name))
+        _summary_axes(ax, ds, name, label, unit, models)
+    legend = [[Line2D([], [], **_line(m, models), **_marker(m), label=_title(m)) for m in models]]
+    if len(drawn) > 1:
+        legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
+                              label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
+    return legend + [_flag_handles(ds, models, drawn)]
+
+
+def _draw_categories(axs, ds, drawn, marks, variables, models):
+    """One panel per variable: a mark per model at each category's integer position."""
+    name_axis = drawn[0]
+    names = [str(v) for v in ds[name_axis].values]
+    x = np.arange(len(names), dtype=float)
+    for ax, (name, label, factor, unit) in zip(axs, variables):
+        for slot, model in enumerate(m for m in models if _defined(ds, name, m)):
+            sel = ds.sel(model=model)
+            values = factor * sel[name].values
+            style = _line(model, models)
+            ax.plot(x, values, ls="none", color=style["color"], zorder=style["zorder"], **_marker(model))
+            capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
+            _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
+        _line_marks(ax, ds, name_axis, marks)
+        ax.set_xticks(x, names)
+        ax.set_xlim(-0.6, len(names) - 0.4)
+        ax.set_xlabel(_axis_label(ds, name_axis))
+        _summary_axes(ax, ds, name, label, unit, models)
+    return [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
+             for m in models], _flag_handles(ds, models, drawn)]
+
+
+def _scale(ax, which, name, values):
+    """Log scale for a time-step axis; ticks at the swept values when there are few of them."""
+    getattr(ax, f"set_{which}scale")("log" if name in LOG_AXES else "linear")
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    if len(values) <= MAX_VALUE_TICKS:
+        axis.set_ticks(values, [f"{v:.4g}" for v in values])
+        axis.set_minor_locator(NullLocator())
+
+
+def _summary_axes(ax, ds, name, label, unit, models):
+    """Labels, title (saying for which models a variable is not defined), margins and grid."""
+    missing = [_title(m) for m in models if not _defined(ds, name, m)]
+    ax.set_ylabel(f"{label} ({unit})")
+    ax.set_title(label + (f"\n(not defined for {', '.join(missing)})" if missing else ""), fontsize=10)
+    ax.margins(y=0.18)
+    ax.grid(True, color="0.9", lw=0.6)

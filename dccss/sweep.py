@@ -16,6 +16,8 @@ import numpy as np
 from . import models
 from .geometry import Geometry
 from .kinematics import CORNERS, corner_diagnostics
+from .newton import NewtonOptions
+from .simulation import CAPACITY_POLICIES, CapacityError
 
 #: summary variable -> (units, long_name); "stick" entries exist for stick-slip only
 SUMMARIES = {
@@ -37,58 +39,99 @@ SUMMARIES = {
 STICK_ONLY = ("sticking_rotation_max", "rise_stick_max")
 
 
-#: how each per-step value is reduced over the steps (fmax/fmin skip the NaN of step 0)
+#: how each per-step value is reduced over the steps (fmax/fmin skip the NaN of step 0); others
+#: keep their last value
 _REDUCE = {"theta2_max_abs": np.fmax, "rise_max": np.fmax, "I_max": np.fmax, "clearance_min": np.fmin,
            "newton_iterations_max": np.maximum, "iterations": np.add, "sticking_rotation_max": np.fmax,
            "rise_stick_max": np.fmax}
 
 
-def summarize(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
+def _last(old, new):
+    return new
+
+
+def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, **kw) -> dict:
     """Run ``model`` on the batch (X_g of shape (T, ...)) and return the summaries (...).
 
     With ``options=NewtonOptions(on_failure="mark")`` a case the solver fails on is reported
-    (``failed``, ``failure_time``, NaN summaries) while the others complete."""
+    (``failed``, ``failure_time``, NaN summaries) while the others complete.
+
+    ``capacity`` is the policy of ``simulation.simulate`` applied per case: "continue" (flag
+    the ring and go on), "stop" (the case's summaries are those of its history up to the step
+    that reaches a ring: a later solver failure of that case is not one) or "error" (a case
+    that reaches a ring is marked failed at that time with ``on_failure="mark"``; otherwise a
+    CapacityError names its batch index). ``progress(n, N)`` is called after each step."""
+    if capacity not in CAPACITY_POLICIES:
+        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     Xg = np.asarray(Xg, dtype=float)
     shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
     if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
         one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
-        out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), **kw)
+        out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), capacity=capacity,
+                        progress=progress, **kw)
         return {k: np.reshape(v, shape) for k, v in out.items()}
     with np.errstate(invalid="ignore", divide="ignore"):  # failed cases are NaN by design
-        return _summarize(model, geometry, Xg, theta2_0, shape, **kw)
+        return _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw)
 
 
-def _summarize(model, geometry, Xg, theta2_0, shape, **kw):
+def _keep(mask, old, new):
+    """``new`` where ``mask`` is False, ``old`` where it is True (mask broadcast over trailing axes)."""
+    mask = np.reshape(mask, np.shape(mask) + (1,) * (np.ndim(new) - np.ndim(mask)))
+    return np.where(mask, old, new)
+
+
+def _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw):
     rest = geometry.Ry3_compatible(0.0)
     times = kw.get("times")
-    acc, previous, failure, reached = None, None, np.full(shape, np.nan), np.full(shape, np.nan)
+    mark = kw.get("options", NewtonOptions()).on_failure == "mark"
+    acc, previous = None, None
+    failure, reached = np.full(shape, np.nan), np.full(shape, np.nan)
+    stopped = np.zeros(shape, dtype=bool)  # cases whose history ended at a ring (capacity stop/error)
     for step in models.steps(model, geometry, Xg, theta2_0, **kw):
-        q = step["q"]
-        now = times[step["n"]] if times is not None else step["n"]
-        failure = np.where(np.isnan(failure) & np.isnan(q).any(axis=-1), now, failure)
+        q, n = step["q"], step["n"]
+        now = times[n] if times is not None else n
+        failure = np.where(np.isnan(failure) & ~stopped & np.isnan(q).any(axis=-1), now, failure)
         theta2, rise = np.degrees(q[..., 5]), q[..., 7] - rest
         interp, gap = corner_diagnostics(q, geometry, step.get("local"))
-        reached = np.where(np.isnan(reached) & (gap.min(axis=-1) < 0), now, reached)
         its = np.asarray(step["newton_iterations"]) + np.asarray(step.get("newton_iterations_stick", 0))
         current = {"theta2_max_abs": np.abs(theta2), "rise_max": rise, "I_max": interp,
-                   "clearance_min": gap.min(axis=-1), "newton_iterations_max": its, "iterations": its}
+                   "clearance_min": gap.min(axis=-1), "newton_iterations_max": its, "iterations": its,
+                   "theta2_end": theta2, "rise_end": rise, "steps": np.full(shape, n)}
         if model == "stick_slip":
             qs = step["q_stick"]
             turn = np.abs(np.degrees(qs[..., 5]) - previous) if previous is not None else np.nan * theta2
             current.update(sticking_rotation_max=turn, rise_stick_max=qs[..., 7] - rest)
-        acc = current if acc is None else {k: _REDUCE[k](acc[k], v) for k, v in current.items()}
         previous = theta2
-    out = {"theta2_max_abs": acc["theta2_max_abs"], "theta2_end": theta2, "rise_max": acc["rise_max"],
-           "rise_end": rise, "clearance_min": acc["clearance_min"],
-           "capacity_exceeded": acc["clearance_min"] < 0,
+        if acc is None:
+            acc = current
+        else:
+            acc = {k: _keep(stopped, acc[k], _REDUCE.get(k, _last)(acc[k], v)) for k, v in current.items()}
+        first = np.isnan(reached) & ~stopped & (gap.min(axis=-1) < 0)
+        if capacity == "error" and first.any() and not mark:
+            index = tuple(int(i) for i in np.argwhere(np.broadcast_to(first, shape))[0]) if shape else ()
+            err = CapacityError(f"the pad reaches a retaining ring at t = {float(now):.6g} s in the case at "
+                                f"batch index {index} (capacity: error)")
+            err.index = index
+            raise err
+        reached = np.where(first, now, reached)
+        if capacity != "continue":
+            stopped = stopped | ~np.isnan(reached)
+        if progress is not None:
+            progress(n, Xg.shape[0] - 1)
+    out = {"theta2_max_abs": acc["theta2_max_abs"], "theta2_end": acc["theta2_end"], "rise_max": acc["rise_max"],
+           "rise_end": acc["rise_end"], "clearance_min": acc["clearance_min"],
+           "capacity_exceeded": ~np.isnan(reached),
            "newton_iterations_max": np.asarray(acc["newton_iterations_max"], dtype=np.int32),
-           "newton_iterations_mean": np.asarray(acc["iterations"]) / max(step["n"], 1)}
+           "newton_iterations_mean": np.asarray(acc["iterations"]) / np.maximum(acc["steps"], 1)}
     for i, c in enumerate(CORNERS):
         out[f"I_{c}_max"] = acc["I_max"][..., i]
     if model == "stick_slip":
         out.update(sticking_rotation_max=acc["sticking_rotation_max"], rise_stick_max=acc["rise_stick_max"])
+    if capacity == "error":  # reaching a ring is this policy's failure
+        failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
     failed = ~np.isnan(failure)
     out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
            for k, v in out.items()}
-    out["capacity_exceeded"] = np.where(failed, False, out["capacity_exceeded"])
-    return out | {"failed": failed, "failure_time": failure, "capacity_time": np.where(failed, np.nan, reached)}
+    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
+    return out | {"failed": failed, "failure_time": failure,
+                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}

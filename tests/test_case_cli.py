@@ -1,5 +1,7 @@
 """Case files and the ``dccss run`` command: valid runs, and errors that name the key."""
 
+import os
+import pty
 import subprocess
 import sys
 
@@ -135,3 +137,57 @@ def test_missing_and_malformed_case_file(tmp_path):
     bad.write_text("- a list\n")
     with pytest.raises(CaseError, match="case: expected a mapping"):
         load_case(bad)
+
+
+BEYOND = {**CASE, "excitation": {"kind": "sine", "amplitude": 0.40, "omega": 10.0, "duration": 1.0}}
+
+
+@pytest.mark.parametrize("policy", ["continue", "stop"])
+def test_cli_warns_once_when_a_ring_is_reached(tmp_path, policy, capsys):
+    out = tmp_path / "out.nc"
+    assert main(["run", str(write(tmp_path, {**BEYOND, "capacity": policy})), "-o", str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    ring = [line for line in err if "retaining ring" in line]
+    ds = xr.open_dataset(out)
+    plate, when = ds.attrs["capacity_exceeded_plate"], ds.attrs["capacity_exceeded_at_s"]
+    assert len(ring) == 1 and ring[0].startswith(f"dccss: warning: the pad reaches the retaining ring of {plate} "
+                                                 f"at t = {when:.6g} s and passes it by up to")
+    assert f"(capacity: {policy})" in ring[0]
+    cut = [line for line in err if "cut the history short" in line]
+    if policy == "stop":
+        assert len(cut) == 1 and f"({ds.sizes['t'] - 1} steps written)" in cut[0]
+    else:
+        assert cut == [] and ds.sizes["t"] == 101
+
+
+def test_cli_writes_a_marked_failure_and_says_so(tmp_path, capsys):
+    case = {**CASE, "model": "stick_slip", "on_failure": "mark",
+            "excitation": {"kind": "sine", "amplitude": 0.9, "omega": 10.0, "duration": 1.0}}
+    out = tmp_path / "out.nc"
+    assert main(["run", str(write(tmp_path, case)), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "dccss: warning: the solver failed at t = 0.15 s; the history is written up to the last converged" in err
+    assert xr.open_dataset(out).attrs["failed"] == 1
+    assert main(["run", str(write(tmp_path, {**case, "on_failure": "stop"})), "-o", str(tmp_path / "no.nc")]) == 3
+    assert "Before the solver failed, the pad reached the retaining ring of RB1" in capsys.readouterr().err
+    assert not (tmp_path / "no.nc").exists()
+
+
+def test_progress_line_only_on_a_terminal(tmp_path):
+    """A pipe gets no progress line; a terminal gets one (and --quiet silences it)."""
+    case = str(write(tmp_path, {**CASE, "excitation": {**CASE["excitation"], "duration": 2.0}, "dt": 0.001}))
+    piped = subprocess.run([sys.executable, "-m", "dccss", "run", case, "-o", str(tmp_path / "a.nc")],
+                           capture_output=True, text=True)
+    assert piped.returncode == 0 and "step" not in piped.stderr
+    for args, shown in (([], True), (["--quiet"], False)):
+        leader, follower = pty.openpty()
+        run = subprocess.run([sys.executable, "-m", "dccss", "run", case, "-o", str(tmp_path / "b.nc"), *args],
+                             stdout=subprocess.PIPE, stderr=follower, text=True)
+        os.close(follower)
+        try:
+            screen = os.read(leader, 65536).decode()
+        except OSError:  # EIO: nothing was written to the terminal
+            screen = ""
+        os.close(leader)
+        assert run.returncode == 0
+        assert ("dccss: step 2000/2000 (100 %)" in screen) == shown, screen

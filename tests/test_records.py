@@ -1,14 +1,31 @@
-"""Recorded ground motions: AT2/CSV readers, integration with baseline correction, errors."""
+"""Recorded ground motions: PEER and text readers, units, integration with baseline correction, errors."""
 
 import hashlib
 import importlib.util
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.integrate import cumulative_trapezoid
 
-from dccss.records import G, Record, integrate, read_acceleration_csv, read_at2, write_at2
+from dccss.case import case_from
+from dccss.checks import CaseError
+from dccss.excitation import Table
+from dccss.records import (
+    BASELINES,
+    G,
+    Record,
+    RecordWarning,
+    integrate,
+    read_acceleration_csv,
+    read_at2,
+    read_peer,
+    units_from,
+    write_at2,
+    write_peer,
+)
 
 RECORDS = Path(__file__).resolve().parents[1] / "config" / "studies" / "records"
 SYNTHETIC = RECORDS / "synthetic.AT2"
@@ -30,7 +47,7 @@ def trapezoid_tolerance(omega=OMEGA, dt=DT):
 
 
 def write_csv(path, t, a):
-    np.savetxt(path, np.column_stack([t, a]), delimiter=",", header="time,acceleration", comments="",
+    np.savetxt(path, np.column_stack([t, a]), delimiter=",", header="time (s),acceleration (m/s2)", comments="",
                fmt="%.17g")
 
 
@@ -195,7 +212,8 @@ AT2_ERRORS = {
 
 CSV_ERRORS = {
     "empty": ("\n\n", "is empty"),
-    "wrong header": ("t,a\n0,0\n1,1\n2,2\n", "line 1: expected a header naming the columns 'time' and 'acceleration'"),
+    "wrong header": ("channel,acc (g),gain\n0,0,1\n1,1,1\n2,2,1\n",
+                     "line 1: with 3 columns the header must name the time column"),
     "no rows": ("time,acceleration\n", "has a header but no data rows"),
     "non-numeric": ("time,acceleration\n0,0\n0.1,abc\n0.2,0\n", "line 3: acceleration 'abc' is not a number"),
     "field count": ("time,acceleration\n0,0\n0.1\n0.2,0\n", "line 3: expected 2 comma-separated fields, got 1"),
@@ -229,14 +247,15 @@ def test_csv_errors_name_file_and_problem(tmp_path, case):
     content, problem = CSV_ERRORS[case]
     path = tmp_path / "bad.csv"
     path.write_text(content)
-    expect_error(path, problem)
+    expect_error(path, problem, units="m/s2")
 
 
 @pytest.mark.parametrize("name, problem", [("nope.AT2", "does not exist"), ("nope.csv", "does not exist"),
-                                           ("record.txt", "unknown record format '.txt'")])
+                                           ("nope.DT2", "does not exist"),
+                                           ("record.xlsx", "unknown record format '.xlsx'")])
 def test_missing_file_and_unknown_format(tmp_path, name, problem):
     path = tmp_path / name
-    if name.endswith(".txt"):
+    if name.endswith(".xlsx"):
         path.write_text("0 0\n")
     expect_error(path, problem)
 
@@ -288,8 +307,326 @@ def test_simulate_accepts_a_record():
 
     record = Record.from_file(SYNTHETIC, window=(4.0, 6.0))
     ds = simulate(DFP1, record, model="compliant", dt=0.01)
-    assert ds.sizes["time"] == 201 and float(ds.time[0]) == 4.0
-    assert np.array_equal(ds["Xg"].values, record.displacement(ds.time.values))
-    assert np.array_equal(ds["Xg_dot"].values, record.velocity(ds.time.values))
+    assert ds.sizes["t"] == 201 and float(ds.t[0]) == 4.0
+    assert np.array_equal(ds["Xg"].values, record.displacement(ds.t.values))
+    assert np.array_equal(ds["Xg_dot"].values, record.velocity(ds.t.values))
     assert ds.attrs["excitation"] == "record" and ds.attrs["record_source"] == "synthetic.AT2"
     assert float(np.abs(ds["Xg"]).max()) > 0.01 and int(ds["capacity_exceeded"].sum()) == 0
+
+
+# --- units and formats: the same motion, whatever the file -------------------------------------------
+def reference():
+    """The raw acceleration (m/s², with an offset for the baseline to remove) and its processed Record."""
+    t, a = sine_record()
+    a = a + 0.05
+    return t, a, Record(t, a)
+
+
+def write_peer_file(path, values_si, units, line3=None, line4=None):
+    """A PEER file at full precision; line 3 or 4 optionally replaced (``{units}`` is filled in)."""
+    write_peer(path, DT, values_si / units_from(units).to_si, units, decimals=16)
+    lines = path.read_text().splitlines()
+    if line3 is not None:
+        lines[2] = line3.format(units=units)
+    if line4 is not None:
+        lines[3] = line4
+    path.write_text("\n".join(lines) + "\n")
+
+
+def write_text_file(path, t, values, header=None, separator=",", comments=(), extra=None):
+    """A text record at full precision: comment lines, an optional header, then the columns."""
+    rows = [separator.join(f"{v:.17g}" for v in row) for row in zip(t, values, *([extra] if extra is not None else []))]
+    rows[3:3] = ["# a comment between the rows"]
+    path.write_text("\n".join([*comments, *([header] if header else []), *rows]) + "\n")
+
+
+def peer(suffix, units, line3=None, line4=None, given=None):
+    quantity = {".AT2": "acceleration", ".VT2": "velocity", ".DT2": "displacement"}[suffix]
+    return (f"r{suffix}", quantity, units, given,
+            lambda path, t, motion: write_peer_file(path, motion[quantity], units, line3, line4))
+
+
+def text(name, quantity, units, header, separator=",", given=None, comments=(), extra=None):
+    def write(path, t, motion):
+        values = motion[quantity] / units_from(units).to_si
+        write_text_file(path, t, values, header, separator, comments, None if extra is None else motion[extra])
+    return name, quantity, units, given, write
+
+
+ACC_UNITS = ["G", "g", "CM/S/S", "CM/SEC/SEC", "CM/S^2", "CM/S2", "GAL", "gal", "cm/s²", "CM/S**2", "cm / sec / sec",
+             "M/S2", "m/s/s", "m/sec^2", "MM/S2", "mm/s**2"]
+FORMATS = [
+    *[peer(".AT2", u) for u in ACC_UNITS],
+    peer(".AT2", "G", line3="ACCELERATION TIME HISTORY IN UNITS OF {units}", line4="  301    0.0100    NPTS, DT"),
+    peer(".AT2", "CM/S/S", line3="ACCELERATION IN {units}"),
+    peer(".AT2", "G", line3="ACCELERATION TIME SERIES", given="g"),  # line 3 without units: the given ones
+    peer(".AT2", "CM/S/S", given="gal"),  # the same units, spelled differently
+    *[peer(".VT2", u) for u in ("CM/S", "CM/SEC", "cm/sec", "M/S", "MM/S")],
+    peer(".VT2", "CM/SEC", line3="VELOCITY TIME HISTORY IN UNITS OF {units}", line4="301 .01 NPTS, DT"),
+    *[peer(".DT2", u) for u in ("CM", "cm", "M", "MM")],
+    peer(".DT2", "CM", line3="DISPLACEMENT TIME HISTORY IN UNITS OF {units}", given="cm"),
+    text("r.csv", "acceleration", "g", "time (s), acc (g)"),
+    text("r.csv", "acceleration", "cm/s2", "t [s]; acceleration (cm/s2)", separator=";"),
+    text("r.csv", "acceleration", "m/s^2", "time,acceleration[m/s^2]"),
+    text("r.csv", "acceleration", "gal", "time (s),acceleration (gal)", given="CM/S/S"),
+    text("r.csv", "acceleration", "m/s2", "time,acceleration", given="m/s2"),
+    text("r.csv", "acceleration", "cm/s2", None, given="cm/s2"),
+    text("r.csv", "acceleration", "g", "time (s),acceleration (g),channel", extra="velocity"),
+    text("r.csv", "acceleration", "g", "time (s),acc (g),disp (m)", extra="displacement", given="G"),
+    text("r.csv", "displacement", "m", "time (s),disp (m),acc (g)", extra="acceleration", given="m"),
+    text("r.txt", "displacement", "cm", "time (s)\tdisp (cm)", separator="\t"),
+    text("r.txt", "acceleration", "g", None, separator=" ", given="g", comments=["# PGA about 0.4 g"]),
+    text("r.txt", "velocity", "mm/s", "# time, velocity\n# t (s)\tv (mm/s)", separator="\t", given="mm/s"),
+    text("r.dat", "velocity", "cm/sec", "time (s)    vel (cm/sec)", separator="    "),
+    text("r.dat", "acceleration", "gal", "t[s] a[gal]", separator="\t", comments=["# recorded somewhere"]),
+    text("r.dat", "displacement", "mm", "time  displacement", separator="  ", given="mm"),
+]
+
+
+@pytest.mark.parametrize("name, quantity, units, given, write", FORMATS,
+                         ids=[f"{f[0]}-{f[2]}-{i}" for i, f in enumerate(FORMATS)])
+def test_same_motion_same_displacement(tmp_path, name, quantity, units, given, write):
+    """Every format and units spelling of one motion gives its displacement to 1e-9 relative."""
+    t, a, ref = reference()
+    motion = {"acceleration": a, "velocity": ref.velocity_samples, "displacement": ref.displacement_samples}
+    path = tmp_path / name
+    write(path, t, motion)
+    record = Record.from_file(path, units=given)
+    assert record.quantity == quantity and record.npts == t.size
+    assert np.max(np.abs(record.time - t)) < 1e-12
+    assert np.max(np.abs(record.displacement_samples - ref.displacement_samples)) < 1e-9 * ref.pgd
+    assert record.pgd == pytest.approx(ref.pgd, rel=1e-9)
+    attrs = record.attrs()
+    assert attrs["record_quantity"] == quantity
+    assert units_from(attrs["record_units"]).same_as(units_from(units))
+    assert attrs["record_baseline"] == ("none" if quantity == "displacement" else "linear")
+    assert "record_warning" not in attrs
+
+
+def test_the_used_file_really_differs_by_units(tmp_path):
+    """The comparison above can fail: the same numbers in other units are another motion."""
+    t, a, ref = reference()
+    write_peer_file(tmp_path / "r.AT2", a, "CM/S/S")
+    lines = (tmp_path / "r.AT2").read_text().replace("UNITS OF CM/S/S", "UNITS OF G")
+    (tmp_path / "r.AT2").write_text(lines)
+    with pytest.warns(RecordWarning):
+        wrong = Record.from_file(tmp_path / "r.AT2")
+    assert wrong.pgd == pytest.approx(100 * G * ref.pgd, rel=1e-9)
+
+
+def test_velocity_record_baseline_as_after_the_first_integration(tmp_path):
+    """A raw velocity (the integral of a raw acceleration) is corrected exactly as the acceleration record is."""
+    t, a = sine_record()
+    a = a + 0.05 + 0.02 * t
+    raw_velocity = cumulative_trapezoid(a, t, initial=0.0)
+    for baseline in BASELINES:
+        ref = Record(t, a, baseline=baseline)
+        path = tmp_path / f"{baseline}.VT2"
+        write_peer_file(path, raw_velocity, "M/S")
+        record = Record.from_file(path, baseline=baseline)
+        assert record.baseline == baseline
+        assert np.max(np.abs(record.velocity_samples - ref.velocity_samples)) < 1e-12
+        assert np.max(np.abs(record.displacement_samples - ref.displacement_samples)) < 1e-9 * ref.pgd
+
+
+def test_displacement_record_is_used_as_recorded(tmp_path):
+    """No integration: X_g is the samples, the velocity that of a Table, no baseline but "none"."""
+    t, _, ref = reference()
+    x = ref.displacement_samples + 0.01  # a permanent offset, which a baseline would remove
+    path = tmp_path / "r.DT2"
+    write_peer_file(path, x, "CM")
+    record = Record.from_file(path)
+    assert np.allclose(record.displacement_samples, x, rtol=1e-15, atol=1e-17)
+    table = Table(t, x)
+    tq = np.linspace(0.0, PERIODS, 777)
+    assert np.allclose(record.velocity(tq), table.velocity(tq), rtol=0, atol=1e-12)
+    assert Record.from_file(path, baseline="none").baseline == "none"
+    windowed = Record.from_file(path, window=(0.5, 1.75))
+    assert windowed.displacement(0.5) == pytest.approx(x[50], abs=1e-15)  # not restarted from 0
+    for baseline in ("linear", "quadratic"):
+        expect_error(path, f"baseline {baseline!r} removes a trend from an integrated velocity, but a displacement "
+                           f"record is used as recorded", baseline=baseline)
+
+
+def test_pga_of_velocity_and_displacement_records(tmp_path):
+    """Estimated PGA: central differences, the same for both, (omega dt)²/4 below the sine's peak."""
+    t, a, ref = reference()
+    write_peer_file(tmp_path / "r.VT2", ref.velocity_samples, "CM/S")
+    write_peer_file(tmp_path / "r.DT2", ref.displacement_samples, "CM")
+    vt2, dt2 = Record.from_file(tmp_path / "r.VT2"), Record.from_file(tmp_path / "r.DT2")
+    assert vt2.pga == pytest.approx(dt2.pga, rel=1e-9)
+    assert vt2.pga == pytest.approx(ref.pga, rel=(OMEGA * DT) ** 2 / 4)
+    assert np.max(np.abs(dt2.acceleration[1:-1] - vt2.acceleration[1:-1])) < 1e-9 * ref.pga
+
+
+def test_write_peer_variants(tmp_path):
+    acc = np.array([0.0, 1.234567e-3, -0.35, 2.5e-9, 0.1, -0.2, 0.3])
+    path = tmp_path / "r.AT2"
+    write_at2(path, 0.005, acc * G * 100, units="CM/S/S")
+    assert path.read_text().splitlines()[2] == "ACCELERATION TIME SERIES IN UNITS OF CM/S/S"
+    dt, back = read_at2(path)
+    assert dt == 0.005 and np.allclose(back, acc, rtol=1e-7, atol=0)  # read_at2 converts to g
+    write_peer(tmp_path / "r.VT2", 0.005, acc, "CM/SEC")
+    assert (tmp_path / "r.VT2").read_text().splitlines()[2] == "VELOCITY TIME SERIES IN UNITS OF CM/SEC"
+    dt, values, units = read_peer(tmp_path / "r.VT2")
+    assert units == ("CM/SEC", "velocity", 0.01) and np.allclose(values, acc, rtol=1e-7, atol=0)
+
+
+@pytest.mark.parametrize("text, quantity, to_si", [
+    ("G", "acceleration", G), ("CM/S/S", "acceleration", 0.01), ("cm/sec/sec", "acceleration", 0.01),
+    ("CM/S^2", "acceleration", 0.01), ("CM/S2", "acceleration", 0.01), ("Gal", "acceleration", 0.01),
+    ("cm/s²", "acceleration", 0.01), ("m/s**2", "acceleration", 1.0), ("MM / S / S", "acceleration", 1e-3),
+    ("CM/SEC", "velocity", 0.01), ("m/s", "velocity", 1.0), ("mm/s", "velocity", 1e-3),
+    ("CM", "displacement", 0.01), ("m", "displacement", 1.0), ("MM", "displacement", 1e-3), ("sec", "time", 1.0)])
+def test_units_table(text, quantity, to_si):
+    assert units_from(text) == (text, quantity, to_si)
+
+
+@pytest.mark.parametrize("text", ["FT/S2", "in", "km", "g/s", "ms", "CM/S3", "", "G G"])
+def test_unknown_units(text):
+    with pytest.raises(ValueError, match=re.escape(f"unknown units {text!r}; allowed: acceleration: g, m/s2")):
+        units_from(text)
+
+
+# --- refused: unknown, missing, conflicting units; the wrong quantity -----------------------------------
+PEER_ERRORS = [
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF FT/S2", {},
+     "line 3: unknown units 'FT/S2' in 'ACCELERATION TIME SERIES IN UNITS OF FT/S2'; allowed: acceleration: g, "
+     "m/s2, cm/s2, gal, mm/s2"),
+    ("r.AT2", "ACCELERATION TIME SERIES", {}, "line 3: no units in 'ACCELERATION TIME SERIES'"),
+    ("r.AT2", "", {}, "line 3: no units in ''"),
+    ("r.AT2", "VELOCITY TIME SERIES IN UNITS OF G", {}, "line 3: 'VELOCITY TIME SERIES IN UNITS OF G' says "
+                                                        "velocity, but an AT2 file holds acceleration"),
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF CM/S", {},
+     "line 3: 'CM/S' are units of velocity, but an AT2 file holds acceleration"),
+    ("r.VT2", "VELOCITY TIME SERIES IN UNITS OF CM/S/S", {},
+     "line 3: 'CM/S/S' are units of acceleration, but a VT2 file holds velocity"),
+    ("r.DT2", "ACCELERATION TIME SERIES IN UNITS OF CM", {}, "says acceleration, but a DT2 file holds displacement"),
+    ("r.DT2", "DISPLACEMENT TIME SERIES IN UNITS OF G", {}, "'G' are units of acceleration, but a DT2 file holds"),
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF G", {"units": "cm/s2"},
+     "line 3 states units 'G', but units 'cm/s2' were given"),
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF G", {"units": "cm"},
+     "units 'cm' are units of displacement, but an AT2 file holds acceleration"),
+    ("r.AT2", "ACCELERATION TIME SERIES", {"units": "cm/s"}, "units 'cm/s' are units of velocity, but an AT2 file"),
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF G", {"units": "furlongs"}, "units: unknown units 'furlongs'"),
+    ("r.AT2", "ACCELERATION TIME SERIES IN UNITS OF G", {"units": "s"}, "units 's' is a time unit"),
+]
+
+
+@pytest.mark.parametrize("name, line3, kw, problem", PEER_ERRORS, ids=[e[3][:40] for e in PEER_ERRORS])
+def test_peer_units_errors(tmp_path, name, line3, kw, problem):
+    path = tmp_path / name
+    write_peer_file(path, sine_record()[1], "G" if name.endswith("AT2") else "CM", line3=line3)
+    expect_error(path, problem, **kw)
+
+
+TEXT_ERRORS = [
+    ("time,acceleration\n0,0\n0.1,1\n0.2,0\n", {},
+     "line 1: cannot tell the units of column 'acceleration': state them in the header, e.g. 'time (s), "
+     "acceleration (g)', or give units"),
+    ("# time (s), acc (g)\n0,0\n0.1,1\n0.2,0\n", {}, "has no header stating the units: add one"),
+    ("0 0\n0.1 1\n0.2 0\n", {}, "has no header stating the units"),
+    ("0,0,1\n0.1,1,1\n0.2,0,1\n", {"units": "g"}, "line 1: without a header a record has 2 columns"),
+    ("time (s),acc (g)\n0,0\n0.1,1\n0.2,0\n", {"units": "cm/s2"},
+     "line 1: the header states units 'g' for column 'acc (g)', but units 'cm/s2' were given"),
+    ("time (s),acceleration\n0,0\n0.1,1\n0.2,0\n", {"units": "cm"},
+     "line 1: column 'acceleration' holds acceleration, but units 'cm' are units of displacement"),
+    ("time (s),acc (ft/s2)\n0,0\n0.1,1\n0.2,0\n", {}, "line 1: unknown units 'ft/s2' in column 'acc (ft/s2)'; allowed"),
+    ("time (ms),acc (g)\n0,0\n100,1\n200,0\n", {}, "line 1: the time column 'time (ms)' must be in s, got 'ms'"),
+    ("time (min);acc (g)\n0;0\n1;1\n2;0\n", {}, "line 1: the time column 'time (min)' must be in s, got 'min'"),
+    ("time (s),acceleration (cm/s)\n0,0\n0.1,1\n0.2,0\n", {},
+     "line 1: column 'acceleration (cm/s)' is named as acceleration but 'cm/s' are units of velocity"),
+    ("time (s),acc (g),vel (cm/s)\n0,0,0\n0.1,1,0\n0.2,0,0\n", {},
+     "line 1: more than one motion column in ['time (s)', 'acc (g)', 'vel (cm/s)']; keep one, or give units"),
+    ("time (s),acc (g),disp (cm)\n0,0,0\n0.1,1,0\n0.2,0,0\n", {"units": "cm/s"},
+     "line 1: with 3 columns the header must name the motion column"),
+    ("t (s),time,acc (g)\n0,0,0\n0.1,0.1,1\n0.2,0.2,0\n", {}, "line 1: more than one time column"),
+    ("\n# only a comment\n", {}, "has no data rows (only comments)"),
+    ("time (s);acc (g)\n0;0\n0.1\n0.2;0\n", {}, "line 3: expected 2 semicolon-separated fields, got 1"),
+    ("time (s)\tacc (g)\n0\t0\n0.1\t1\t2\n", {}, "line 3: expected 2 tab-separated fields, got 3"),
+    ("time (s) acc (g)\n0 0\n0.1 x1\n0.2 0\n", {}, "line 3: acceleration 'x1' is not a number"),
+]
+
+
+@pytest.mark.parametrize("content, kw, problem", TEXT_ERRORS, ids=[e[2][:40] for e in TEXT_ERRORS])
+def test_text_units_errors(tmp_path, content, kw, problem):
+    path = tmp_path / "bad.txt"
+    path.write_text(content)
+    expect_error(path, problem, **kw)
+
+
+def test_arrays_with_units():
+    t, a = sine_record()
+    in_g = Record(t, a / G, units="g")
+    assert np.allclose(in_g.displacement_samples, Record(t, a).displacement_samples, rtol=0, atol=1e-15)
+    assert in_g.attrs()["record_units"] == "g" and Record(t, a).attrs()["record_units"] == "m/s2"
+    with pytest.raises(ValueError, match="record 'arrays': units 'cm' are units of displacement, not acceleration"):
+        Record(t, a, units="cm")
+    with pytest.raises(ValueError, match="record 'arrays': unknown units 'furlongs'"):
+        Record(t, a, units="furlongs")
+    with pytest.raises(ValueError, match=re.escape("give exactly one of acceleration, velocity, displacement; "
+                                                   "got ['acceleration', 'velocity']")):
+        Record(t, a, velocity=a)
+
+
+# --- implausible peak ground acceleration ----------------------------------------------------------------
+@pytest.mark.parametrize("factor, units, side", [(100, "G", "above 5 g"), (1 / G, "CM/S/S", "below 0.001 g")])
+def test_implausible_pga_is_reported(tmp_path, factor, units, side):
+    """A record in cm/s² labelled g (981 times too large), one in g labelled cm/s² (981 times too small)."""
+    t, a = sine_record()  # PGA 3.95 m/s² = 0.403 g
+    path = tmp_path / "r.AT2"
+    write_peer(path, DT, a * factor, units, decimals=16)
+    with pytest.warns(RecordWarning, match=f"peak ground acceleration is .* g, {side}: implausible") as caught:
+        record = Record.from_file(path)
+    assert len(caught) == 1
+    warning = record.attrs()["record_warning"]
+    assert warning == record.warning == str(caught[0].message)
+    assert "'r.AT2'" in warning and f"check the units ({units!r})" in warning
+
+
+def test_implausible_pga_after_scale_and_estimated(tmp_path):
+    t, a, ref = reference()
+    with pytest.warns(RecordWarning, match="above 5 g"):
+        Record(t, a, scale=13.0)
+    write_peer_file(tmp_path / "r.DT2", ref.displacement_samples * 1e-3, "CM")
+    with pytest.warns(RecordWarning, match="the peak ground acceleration, estimated from the displacement, is "
+                                           r"0\.000\d+ g, below 0\.001 g") as caught:
+        record = Record.from_file(tmp_path / "r.DT2")
+    assert record.attrs()["record_warning"] == str(caught[0].message)
+
+
+def test_plausible_record_is_not_reported(sine_at2):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RecordWarning)
+        records = [Record.from_file(sine_at2), Record.from_file(SYNTHETIC), Record.from_file(sine_at2, scale=12),
+                   Record(*sine_record(), scale=0.003)]
+    assert all(r.warning == "" and "record_warning" not in r.attrs() for r in records)
+
+
+# --- the units key of a case file -----------------------------------------------------------------------
+CASE = {"prototype": "DFP1", "dt": 0.01, "model": "compliant"}
+
+
+def test_case_units_key(tmp_path):
+    t, a = sine_record()
+    path = tmp_path / "r.csv"
+    write_text_file(path, t, a / G, header="time,acceleration")
+    case = case_from({**CASE, "excitation": {"kind": "record", "file": "r.csv", "units": "g"}}, tmp_path)
+    assert case.excitation.pgd == pytest.approx(Record(t, a).pgd, rel=1e-9)
+    assert case.excitation.attrs()["record_units"] == "g"
+    for units, problem in [(None, "excitation.file: record file .*r.csv.*cannot tell the units"),
+                           ("furlongs", "excitation.units: unknown units 'furlongs'"),
+                           (9.81, "excitation.units: expected units such as g"),
+                           ("cm", "excitation.file: record file .*column 'acceleration' holds acceleration")]:
+        excitation = {"kind": "record", "file": "r.csv", **({} if units is None else {"units": units})}
+        with pytest.raises(CaseError, match=problem):
+            case_from({**CASE, "excitation": excitation}, tmp_path)
+
+
+def test_case_baseline_defaults_by_quantity(tmp_path):
+    t, _, ref = reference()
+    write_peer_file(tmp_path / "r.DT2", ref.displacement_samples, "CM")
+    case = case_from({**CASE, "excitation": {"kind": "record", "file": "r.DT2"}}, tmp_path)
+    assert case.excitation.baseline == "none"
+    with pytest.raises(CaseError, match="excitation.file: .*baseline 'linear' removes a trend"):
+        case_from({**CASE, "excitation": {"kind": "record", "file": "r.DT2", "baseline": "linear"}}, tmp_path)

@@ -79,7 +79,12 @@ def test_failed_case_is_marked_and_others_complete():
 
 BAD = [
     (dict(colour="red"), r"unknown key\(s\) \['colour'\]"),
-    (dict(dt=None), r"missing key\(s\) \['dt'\]"),
+    (dict(dt=None), r"dt: missing: give the time step \(s\), or sweep it"),
+    (dict(sweep__dt=[0.01, 0.5]), r"sweep.dt\[1\]: 0.5 s is larger than the excitation's duration"),
+    (dict(sweep__dt=[0.01, -0.01]), r"sweep.dt\[1\]: must be > 0"),
+    (dict(dt=None, sweep__dt=[0.01, 0.005]), r"histories\[0\]: no dt"),
+    (dict(capacity="ignore"), r"capacity: must be one of \['continue', 'stop', 'error'\]"),
+    (dict(chunk_size="many"), "chunk_size: expected an integer >= 1 or 'auto'"),
     (dict(dt=-0.01), "dt: must be > 0"),
     (dict(dt="1e-3"), "dt: expected a number, got the string '1e-3'"),
     (dict(sweep__h2=[]), "sweep.h2: the sweep axis is empty"),
@@ -159,3 +164,106 @@ def test_cluster_generic_profile_matches_local_run(tmp_path):
         results[profile] = digest(work / "results/studies/tiny")
     assert len(results["profiles/default"]) == 7  # 2 models x 2 chunks, the combined file, 2 histories
     assert results["profiles/default"] == results["profiles/cluster-local"]
+
+
+def test_dt_axis_runs_each_step_size_as_its_own_batch():
+    study = Study.from_config(tiny(dt=None, sweep={"dt": [0.01, 0.005], "alpha21": [8.0, 10.0]}, histories=[
+        {"dt": 0.005, "alpha21": 10.0}], chunk_size=3))
+    assert study.shape == (2, 2) and study.n_chunks == 2  # chunk 0 holds both step sizes
+    combined = study.combine({m: [study.run_chunk(m, k) for k in range(2)] for m in study.models})
+    assert combined["dt"].attrs["units"] == "s" and dict(combined.sizes) == {"model": 2, "dt": 2, "alpha21": 2}
+    for dt in (0.01, 0.005):
+        for alpha21 in (8.0, 10.0):
+            g = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": alpha21, "alpha23": alpha21})
+            t = step_times(Sine(0.2, 30.0, 0.3), dt)
+            h = models.run("stick_slip", g, Sine(0.2, 30.0, 0.3).displacement(t))
+            got = combined.sel(model="stick_slip", dt=dt, alpha21=alpha21)
+            assert float(got["theta2_end"]) == pytest.approx(np.degrees(h["q"][-1, 5]), abs=1e-12)
+    mapping = study.history_mapping(0, "compliant")
+    assert mapping["dt"] == 0.005 and mapping["on_failure"] == "mark" and mapping["capacity"] == "continue"
+
+
+def test_auto_chunks_keep_both_cores_busy():
+    study = Study.from_config(tiny(chunk_size=None, sweep__alpha21={"start": 8.0, "stop": 10.0, "num": 5}))
+    assert study.n_cases == 15 and [len(study.chunk(k)) for k in range(study.n_chunks)] == [4, 4, 4, 3]
+
+
+def test_history_mapping_is_a_case_with_the_points_scale():
+    study = Study.from_config(tiny(sweep={"scale": [0.5, 1.0]}, histories=[{"scale": 0.5}], capacity="stop"))
+    mapping = study.history_mapping(0, "stick_slip")
+    assert mapping["excitation"] == {**TINY["excitation"], "scale": 0.5} and mapping["capacity"] == "stop"
+    ds = study.history_case(0, "stick_slip").run()
+    full = Study.from_config(tiny(sweep={"scale": [1.0]}, histories=[{"scale": 1.0}])).history_case(0, "stick_slip")
+    assert np.allclose(ds["Xg"].values, 0.5 * full.run()["Xg"].values, rtol=1e-15, atol=0)
+
+
+def planned(work, configfile):
+    """{rule: count} of the jobs `snakemake -n` would run."""
+    run = snakemake(work, "--configfile", configfile, "-n")
+    assert run.returncode == 0, run.stderr[-2000:]
+    lines = (run.stdout + run.stderr).splitlines()
+    if "Job stats:" not in lines:
+        return {}
+    table = lines[lines.index("Job stats:") + 3:]
+    jobs = {}
+    for line in table:
+        parts = line.split()
+        if len(parts) != 2 or parts[0] == "total":
+            break
+        jobs[parts[0]] = int(parts[1])
+    jobs.pop("all", None)
+    return jobs
+
+
+@pytest.mark.slow
+def test_a_job_reruns_only_when_its_part_of_the_study_changes(tmp_path):
+    work = copy_project(tmp_path)
+    (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
+    assert snakemake(work, "--configfile", "tiny.yaml").returncode == 0
+    assert planned(work, "tiny.yaml") == {}
+    edits = {
+        "description": (dict(study={"name": "tiny", "description": "another text"}), {"study_plots": 1}),
+        "marks": (dict(marks={"here": {"alpha21": 8.0, "h2": 0.12}}), {"study_plots": 1}),
+        "histories": (dict(histories=TINY["histories"] + [{"alpha21": 8.0, "h2": 0.12}]),
+                      {"study_history": 2, "study_plots": 1}),
+        "sweep": (dict(sweep={"alpha21": [8.0, 10.0], "h2": [0.12, 0.15, 0.2]}),
+                  {"study_chunk": 4, "study_combine": 1, "study_plots": 1}),
+        "dt": (dict(dt=0.005), {"study_chunk": 4, "study_combine": 1, "study_history": 2, "study_plots": 1}),
+        "models": (dict(models=["compliant"]), {"study_combine": 1, "study_plots": 1}),
+    }
+    for name, (change, expected) in edits.items():
+        (work / "edited.yaml").write_text(yaml.safe_dump({**TINY, **change}))
+        assert planned(work, "edited.yaml") == expected, name
+
+
+FAILING = {**TINY, "excitation": {"kind": "sine", "amplitude": 0.27, "omega": 30.0, "duration": 0.3},
+           "sweep": {"alpha21": [10.0, 12.0], "h2": [0.10, 0.15]}, "histories": [{"alpha21": 12.0, "h2": 0.10}],
+           "chunk_size": 2}
+
+
+@pytest.mark.slow
+def test_a_case_without_solution_is_marked_and_the_study_completes(tmp_path):
+    work = copy_project(tmp_path)
+    (work / "failing.yaml").write_text(yaml.safe_dump({**FAILING, "on_failure": "mark"}))
+    run = snakemake(work, "--configfile", "failing.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    combined = xr.open_dataset(work / "results/studies/tiny/tiny.nc")
+    assert int(combined["failed"].sel(model="stick_slip", alpha21=12.0, h2=0.10)) == 1
+    history = xr.open_dataset(work / "results/studies/tiny/histories/stick_slip_0.nc")
+    assert history.attrs["failed"] == 1 and history.attrs["failure_time_s"] == pytest.approx(0.16)
+    assert float(history["t"][-1]) == pytest.approx(0.15) and "reduce dt" in history.attrs["failure_message"]
+    assert "did not converge in sticking" in (work / "logs/studies/tiny/history_stick_slip_0.log").read_text()
+    assert "1 failed" in (work / "logs/studies/tiny/stick_slip_1.log").read_text()
+    assert (work / "figures/studies/tiny/histories.png").exists()
+
+
+@pytest.mark.slow
+def test_a_failing_job_leaves_the_full_message_in_its_log(tmp_path):
+    work = copy_project(tmp_path)
+    (work / "failing.yaml").write_text(yaml.safe_dump({**FAILING, "on_failure": "stop", "histories": []}))
+    run = snakemake(work, "--configfile", "failing.yaml")
+    assert run.returncode != 0
+    assert "did not converge in sticking" in run.stderr
+    log = (work / "logs/studies/tiny/stick_slip_1.log").read_text()
+    assert "sweep point {'alpha21': 12.0, 'h2': 0.1} (stick_slip)" in log and "did not converge in sticking" in log
+    assert "Traceback" in log

@@ -12,7 +12,7 @@ rule study_chunk:
         "results/studies/{study}/chunks/{model}_{chunk}.nc",
     params:
         study_dir=str(STUDY_FILE.parent),
-        study_hash=STUDY_HASH,
+        spec=lambda w: sweep_spec(config, [w.model]),
     log:
         "logs/studies/{study}/{model}_{chunk}.log",
     conda:
@@ -28,7 +28,7 @@ rule study_combine:
         "results/studies/{study}/{study}.nc",
     params:
         study_dir=str(STUDY_FILE.parent),
-        study_hash=STUDY_HASH,
+        spec=sweep_spec(config),
     log:
         "logs/studies/{study}/combine.log",
     conda:
@@ -44,7 +44,7 @@ rule study_history:
         "results/studies/{study}/histories/{model}_{i}.nc",
     params:
         study_dir=str(STUDY_FILE.parent),
-        study_hash=STUDY_HASH,
+        case=lambda w: STUDY.history_mapping(int(w.i), w.model),
     log:
         "logs/studies/{study}/history_{model}_{i}.log",
     conda:
@@ -65,8 +65,9 @@ rule study_plots:
         ],
         [f for f in study_plots() if f.endswith(".pdf")],
     params:
-        study_dir=str(STUDY_FILE.parent),
-        study_hash=STUDY_HASH,
+        caption=f"study {STUDY.name}: {STUDY.description}".rstrip(": "),
+        marks=STUDY.marks,
+        labels=history_labels(),
     log:
         f"logs/studies/{STUDY.name}/plots.log",
     conda:

@@ -1,23 +1,24 @@
-# A study file (config/studies/*.yaml): loaded and checked once, before any job runs.
+# A study file (config/studies/*.yaml): loaded and checked once, before any job runs. Each job's
+# params are the part of the study file that its output depends on, so that Snakemake reruns a
+# job when, and only when, that part changes (editing the description reruns only the plots).
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from dccss.case import CaseError, parameters_hash
-from dccss.study import Study
+from dccss.case import CaseError
+from dccss.study import Study, sweep_spec
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
 try:
     STUDY = Study.from_config(config, STUDY_FILE.parent)
 except CaseError as err:
     raise WorkflowError(f"study file {STUDY_FILE}: {err}") from None
-STUDY_HASH = parameters_hash(config)
 
 
 def study_files():
     """Files the study reads (a recorded or tabulated ground motion): inputs of its jobs."""
-    spec = STUDY.excitation_spec
-    return [str(STUDY_FILE.parent / spec["file"])] if "file" in spec else []
+    files = STUDY.excitation_spec.get("file", [])
+    return [str(STUDY_FILE.parent / f) for f in ([files] if isinstance(files, str) else files)]
 
 
 def chunk_files():
@@ -34,6 +35,11 @@ def history_files():
         for i in range(len(STUDY.histories))
         for model in STUDY.models
     ]
+
+
+def history_labels():
+    return [", ".join(f"{k} = {v:g}" if isinstance(v, float) else f"{k} = {v}" for k, v in point.items())
+            for point in STUDY.histories]
 
 
 def study_plots():

@@ -1,11 +1,11 @@
 """Snakemake adapter: the datasets of a group of figures -> their PNG and PDF files."""
 
-import contextlib
+from _log import logged
 
 from dccss import plotting
 from dccss.results import load
 
-with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+with logged(snakemake.log[0]):
     files = {f: load(f) for f in snakemake.input}
     figures = snakemake.params.datasets
     for (fig, pairs), png, pdf in zip(figures.items(), snakemake.output.png, snakemake.output.pdf):

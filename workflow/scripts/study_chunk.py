@@ -1,13 +1,27 @@
 """Snakemake adapter: one chunk of a study's sweep under one model -> its summaries."""
 
-import contextlib
+import time
 from pathlib import Path
+
+from _log import logged
 
 from dccss.files import write_netcdf
 from dccss.study import Study
 
-with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-    study = Study.from_config(snakemake.config, Path(snakemake.params.study_dir))
-    ds = study.run_chunk(snakemake.wildcards.model, int(snakemake.wildcards.chunk))
+with logged(snakemake.log[0]) as log:
+    study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
+    model, k = snakemake.wildcards.model, int(snakemake.wildcards.chunk)
+    cases = study.chunk(k)
+    print(f"{model}, chunk {k}: {len(cases)} cases")
+    start, shown = time.monotonic(), [0.0]
+
+    def progress(n, total, size, dt):
+        now = time.monotonic() - start
+        if n == total or now - shown[0] >= 5.0:
+            shown[0] = now
+            print(f"  dt = {dt:g} s: {size} cases at step {n}/{total} ({100 * n / total:.0f} %), {now:.1f} s")
+
+    ds = study.run_chunk(model, k, progress)
     write_netcdf(ds, snakemake.output[0])
-    print(f"{ds.sizes['case']} cases, {int(ds['failed'].sum())} failed")
+    print(f"{len(cases)} cases done in {time.monotonic() - start:.1f} s: {int(ds['failed'].sum())} failed, "
+          f"{int(ds['capacity_exceeded'].sum())} reached a retaining ring")

@@ -1,14 +1,15 @@
 """Snakemake adapter: the chunks of a study -> one dataset with a dimension per sweep axis."""
 
-import contextlib
 from pathlib import Path
+
+from _log import logged
 
 from dccss.files import write_netcdf
 from dccss.results import load
 from dccss.study import Study
 
-with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-    study = Study.from_config(snakemake.config, Path(snakemake.params.study_dir))
+with logged(snakemake.log[0]):
+    study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
     chunks = {model: [] for model in study.models}
     for path in snakemake.input:
         ds = load(path)

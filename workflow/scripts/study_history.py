@@ -1,12 +1,17 @@
 """Snakemake adapter: one chosen case of a study, run in full -> its time-history dataset."""
 
-import contextlib
 from pathlib import Path
 
-from dccss.files import write_netcdf
-from dccss.study import Study
+from _log import logged
 
-with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-    study = Study.from_config(snakemake.config, Path(snakemake.params.study_dir))
-    case = study.history_case(int(snakemake.wildcards.i), snakemake.wildcards.model)
-    write_netcdf(case.run(), snakemake.output[0])
+from dccss.case import case_from
+from dccss.cli import warnings_of
+from dccss.files import write_netcdf
+
+with logged(snakemake.log[0]):
+    case = case_from(snakemake.params.case, Path(snakemake.params.study_dir))
+    ds = case.run()
+    write_netcdf(ds, snakemake.output[0])
+    for line in warnings_of(ds):
+        print(f"warning: {line}")
+    print(f"{case.id}: {ds.sizes['t'] - 1} steps -> {snakemake.output[0]}")

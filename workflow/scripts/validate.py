@@ -1,13 +1,13 @@
 """Snakemake adapter: compute every stated number from the results and write the reports."""
 
-import contextlib
+from _log import logged
 
 from dccss import validation
 from dccss.files import write_text
 from dccss.results import load
 
 keys = snakemake.params.results
-with open(snakemake.log[0], "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+with logged(snakemake.log[0]):
     cases = zip(keys["cases"], snakemake.input.cases)
     sweeps = zip(keys["breakaway"], snakemake.input.breakaway)
     results = validation.Results(

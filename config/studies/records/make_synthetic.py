@@ -14,10 +14,11 @@ redistributed, so the repository ships this deterministic stand-in with realisti
 After the default processing of ``dccss.records.Record`` (linear velocity baseline) the peak
 ground displacement is about 15 cm (PGV about 0.38 m/s), below the ~19-22 cm capacity of the Table 1 prototypes.
 
-To run a study on a real record instead, download it as a PEER ``.AT2`` file (or write a CSV
-with columns ``time`` in s and ``acceleration`` in m/s²) and point the case at it, e.g. in Python
-``Record.from_file("RSN1234_NORTHR_XYZ090.AT2", scale=1.0, window=(0.0, 20.0))``, or in a case
-file an excitation of kind ``record`` whose ``file`` is that path (relative to the case file).
+To run a study on a real record instead, download it as a PEER ``.AT2`` file (or ``.VT2``/``.DT2``,
+or write a two-column text file whose header states the units, e.g. ``time (s), acceleration (g)``)
+and point the case at it, e.g. in Python ``Record.from_file("RSN1234_NORTHR_XYZ090.AT2", scale=1.0,
+window=(0.0, 20.0))``, or in a case file an excitation of kind ``record`` whose ``file`` is that
+path (relative to the case file); ``units`` states the units of a file that does not.
 
 Usage: ``python config/studies/records/make_synthetic.py`` (rewrites the file next to it).
 """

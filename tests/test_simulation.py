@@ -1,0 +1,88 @@
+"""One case in, one dataset out: failure marking, capacity policies and what the messages say."""
+
+import numpy as np
+import pytest
+
+from dccss.excitation import Sine, step_times
+from dccss.geometry import Geometry
+from dccss.newton import ConvergenceError
+from dccss.prototypes import DFP1, TABLE1
+from dccss.simulation import CapacityError, simulate
+
+#: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, sticking fails at 0.15 s
+BEYOND = Sine(0.9, 10.0, 1.0)
+#: a wide, flat pad whose sticking phase cannot follow an 8 cm ground step at dt = 0.01 s
+WIDE_FLAT = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": 12.0, "alpha23": 12.0, "h2": 0.10})
+#: plate 3 steeper than plate 1: RB3's ring (15.6 cm) is reached before RB1's (19.1 cm)
+STEEP_TOP = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha3": 19.0})
+
+
+def test_failure_after_the_ring_says_so_first_and_not_reduce_dt():
+    with pytest.raises(ConvergenceError) as err:
+        simulate(DFP1, BEYOND, model="stick_slip", dt=0.01)
+    msg = str(err.value)
+    assert msg.startswith("Before the solver failed, the pad reached the retaining ring of RB1 at t = 0.04 s")
+    assert "capacity: stop" in msg and "reduce dt" not in msg
+    assert "did not converge in sticking (step 15, time 0.15 s" in msg
+
+
+def test_failure_without_a_ring_suggests_reducing_dt_and_that_helps():
+    with pytest.raises(ConvergenceError, match="reduce dt") as err:
+        simulate(WIDE_FLAT, Sine(0.27, 30.0, 1.0), model="stick_slip", dt=0.01)
+    assert "retaining ring" not in str(err.value)
+    ds = simulate(WIDE_FLAT, Sine(0.27, 30.0, 1.0), model="stick_slip", dt=0.005)
+    assert ds.attrs["failed"] == 0 and np.isfinite(ds["theta2"]).all()
+
+
+def test_marked_failure_keeps_the_history_up_to_the_failure():
+    ds = simulate(DFP1, BEYOND, model="stick_slip", dt=0.01, on_failure="mark")
+    assert ds.attrs["failed"] == 1 and ds.attrs["failure_time_s"] == pytest.approx(0.15)
+    assert ds.sizes["t"] == 15 and float(ds["t"][-1]) == pytest.approx(0.14)  # steps 0..14 converged
+    assert all(np.isfinite(ds[v]).all() for v in ("theta2", "Ry3", "I_A"))
+    assert np.isfinite(ds["theta2_stick"][1:]).all()  # (no sticking phase ends at t0)
+    assert "retaining ring of RB1" in ds.attrs["failure_message"]
+    reference = simulate(DFP1, Sine(0.9, 10.0, 0.14), model="stick_slip", dt=0.01)
+    assert np.array_equal(ds["theta2"].values, reference["theta2"].values)  # the same steps, bit for bit
+
+
+def test_unmarked_run_records_no_failure():
+    ds = simulate(DFP1, Sine(0.27, 30.0, 0.2), model="compliant", dt=0.01, on_failure="mark")
+    assert ds.attrs["failed"] == 0 and "failure_time_s" not in ds.attrs and "capacity_exceeded_at_s" not in ds.attrs
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_capacity_error_names_the_plate_reached_and_its_own_capacity(model):
+    with pytest.raises(CapacityError) as err:
+        simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model=model, dt=0.01, capacity="error")
+    msg = str(err.value)
+    assert "retaining ring of RB3" in msg
+    assert f"R3 sin(alpha3 - alpha23) = {100 * STEEP_TOP.capacity3:.4g} cm" in msg
+    assert f"{100 * STEEP_TOP.capacity1:.4g} cm" not in msg
+
+
+def test_capacity_attributes_say_when_where_and_how_far():
+    ds = simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model="compliant", dt=0.01)
+    n = int(np.argmax(ds["capacity_exceeded"].values))
+    assert ds.attrs["capacity_exceeded_plate"] == "RB3"
+    assert ds.attrs["capacity_exceeded_at_s"] == pytest.approx(float(ds["t"][n]))
+    assert float(ds["clearance_3"][n]) < 0 <= float(ds["clearance_3"][n - 1])
+    deepest = -min(float(ds["clearance_1"].min()), float(ds["clearance_3"].min()))
+    assert ds.attrs["capacity_exceeded_by_m"] == pytest.approx(deepest, rel=1e-12)
+    assert ds.attrs["capacity_policy"] == "continue" and "stopped_at_s" not in ds.attrs
+
+
+def test_capacity_stop_ends_the_history_at_the_ring():
+    full = simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model="stick_slip", dt=0.01)
+    stopped = simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model="stick_slip", dt=0.01, capacity="stop")
+    n = int(np.argmax(full["capacity_exceeded"].values))
+    assert stopped.sizes["t"] == n + 1 and stopped.attrs["stopped_at_s"] == pytest.approx(float(full["t"][n]))
+    assert np.array_equal(stopped["theta2"].values, full["theta2"].values[:n + 1])
+    assert stopped.attrs["capacity_exceeded_by_m"] == pytest.approx(-float(full["clearance_3"][n]), rel=1e-12)
+
+
+def test_progress_is_reported_every_step():
+    calls = []
+    simulate(DFP1, Sine(0.27, 30.0, 0.1), model="compliant", dt=0.01,
+             progress=lambda n, total: calls.append((n, total)))
+    assert calls == [(n, 10) for n in range(11)]
+    assert len(step_times(Sine(0.27, 30.0, 0.1), 0.01)) == 11

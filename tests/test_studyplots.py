@@ -1,0 +1,353 @@
+"""Study plots from small synthetic datasets: what is drawn where, in which units, reproducibly."""
+
+import numpy as np
+import pytest
+import xarray as xr
+from matplotlib.collections import PatchCollection, QuadMesh
+from matplotlib.image import AxesImage
+
+from dccss import studyplots
+from dccss.plotting import save
+
+MODELS = ("compliant", "stick_slip")
+AXIS_UNITS = {"alpha21": "degree", "h2": "m", "amplitude": "m", "omega": "rad s-1", "scale": "1",
+              "theta2_0": "degree", "dt": "s"}
+
+
+# --- synthetic datasets ----------------------------------------------------------------------------
+def history(model, t_end=1.0, dt=0.01, gain=1.0, **attrs):
+    """A history dataset like ``dccss.simulate``'s (only what the plots read), t = 0 .. t_end."""
+    t = np.round(np.arange(0.0, t_end + dt / 2, dt), 10)
+    phase = 30.0 * t
+    corners = {f"I_{c}": ("t", gain * 1e-3 * np.sin(phase + k) ** 2 * (-1) ** k) for k, c in enumerate("ABCD")}
+    ds = xr.Dataset({"Xg": ("t", 0.27 * np.sin(phase)), "theta2": ("t", gain * 8.5 * np.sin(phase)),
+                     "rise": ("t", gain * 0.02 * np.sin(phase) ** 2), **corners}, coords={"t": t})
+    ds["Xg"].attrs["units"] = "m"
+    ds.attrs = {"model": model, **attrs}
+    return ds
+
+
+def pair(**attrs):
+    """Both models at one history point; the stick-slip values 5 % larger, to tell the lines apart."""
+    return {"compliant": history("compliant", **attrs), "stick_slip": history("stick_slip", gain=1.05, **attrs)}
+
+
+def study(axes, capacity=None, failed=None, models=MODELS):
+    """A combined study dataset over ``axes`` ({name: values}); capacity/failed: {model: bool grid}."""
+    names = list(axes)
+    shape = tuple(len(v) for v in axes.values())
+    ramp = np.indices(shape).sum(axis=0) if shape else np.zeros(())
+    data = {}
+    for k, model in enumerate(models):
+        base = 1.0 + 0.1 * ramp + 0.2 * k
+        cap = np.zeros(shape, bool) if capacity is None else np.asarray(capacity.get(model, np.zeros(shape, bool)))
+        bad = np.zeros(shape, bool) if failed is None else np.asarray(failed.get(model, np.zeros(shape, bool)))
+        stick = model == "stick_slip"
+        values = {"theta2_max_abs": 8.0 * base, "theta2_end": 7.0 * base, "rise_max": 0.02 * base,
+                  "rise_end": 0.01 * base, "clearance_min": np.where(cap, -0.01, 0.05),
+                  "capacity_time": np.where(cap, 0.3, np.nan), "newton_iterations_mean": 2.0 * base,
+                  "newton_iterations_max": 3.0 + 0 * base, "failure_time": np.where(bad, 0.6, np.nan),
+                  "sticking_rotation_max": 12.0 * base if stick else np.full(shape, np.nan),
+                  "rise_stick_max": 0.05 * base if stick else np.full(shape, np.nan),
+                  **{f"I_{c}_max": 1e-3 * base * (1 + 0.01 * j) for j, c in enumerate("ABCD")}}
+        values = {name: np.where(bad, np.nan, v) for name, v in values.items()}
+        values["capacity_exceeded"] = cap.astype(np.int8)
+        values["failed"] = bad.astype(np.int8)
+        data[model] = xr.Dataset({name: (names, v) for name, v in values.items()})
+    coords = {name: xr.Variable((name,), np.asarray(v, dtype=object) if name == "prototype" else np.asarray(v, float),
+                                {} if name == "prototype" else {"units": AXIS_UNITS[name]}) for name, v in axes.items()}
+    ds = xr.concat([data[m] for m in models], dim="model").assign_coords(model=list(models), **coords)
+    ds.attrs = {"study": "synthetic", "sweep_axes": " ".join(names)}
+    return ds
+
+
+# --- helpers reading the figures --------------------------------------------------------------------
+def panel(fig, text):
+    """The axes whose y label contains ``text``."""
+    found = [ax for ax in fig.axes if text in ax.get_ylabel()]
+    assert found, f"no panel labelled {text!r}: {[ax.get_ylabel() for ax in fig.axes]}"
+    return found
+
+
+def line_with(ax, y):
+    """The one line of an axes whose y values are ``y`` (NaN where ``y`` is NaN)."""
+    hits = [ln for ln in ax.get_lines()
+            if len(ln.get_ydata()) == len(y) and np.allclose(ln.get_ydata(), y, equal_nan=True)]
+    assert len(hits) == 1, f"{len(hits)} lines carry these values"
+    return hits[0]
+
+
+def vertical_lines(ax):
+    """x of the vertical lines (axvline) of an axes."""
+    return sorted(float(ln.get_xdata()[0]) for ln in ax.get_lines()
+                  if len(ln.get_xdata()) == 2 and ln.get_xdata()[0] == ln.get_xdata()[1]
+                  and list(ln.get_ydata()) == [0, 1])
+
+
+def legend_labels(fig):
+    return [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+
+
+def figure_title(fig):
+    return " ".join(legend.get_title().get_text() for legend in fig.legends)
+
+
+def meshes(fig):
+    return [a for ax in fig.axes for a in ax.get_children() if isinstance(a, QuadMesh | AxesImage)]
+
+
+def hatched_cells(ax, gid, xs, ys):
+    """(i, j) indices of the cells covered by the patch collection ``gid`` of an axes."""
+    found = [c for c in ax.collections if isinstance(c, PatchCollection) and c.get_gid() == gid]
+    if not found:
+        return set()
+    assert len(found) == 1
+    cells = set()
+    for path in found[0].get_paths():
+        lo, hi = path.vertices.min(axis=0), path.vertices.max(axis=0)
+        i = [k for k, x in enumerate(xs) if lo[0] < x < hi[0]]
+        j = [k for k, y in enumerate(ys) if lo[1] < y < hi[1]]
+        assert len(i) == 1 and len(j) == 1, "a hatched rectangle covers exactly one cell"
+        cells.add((i[0], j[0]))
+    return cells
+
+
+# --- histories ------------------------------------------------------------------------------------------
+def test_ground_displacement_panel_in_cm():
+    runs = pair()
+    fig = studyplots.histories([("alpha21 = 10", runs)], "caption")
+    (ax,) = panel(fig, "$X_g$")
+    assert "(cm)" in ax.get_ylabel()
+    line_with(ax, 100.0 * runs["compliant"]["Xg"].values)
+    assert np.allclose(line_with(ax, 100.0 * runs["compliant"]["Xg"].values).get_xdata(), runs["compliant"]["t"])
+
+
+def test_models_differ_in_colour_and_line_style_and_compliant_stays_visible():
+    runs = pair()
+    fig = studyplots.histories([("p", runs)], "caption")
+    styles = {}
+    for text, name, factor in (("θ²", "theta2", 1.0), ("rise", "rise", 100.0)):
+        (ax,) = panel(fig, text)
+        for model, ds in runs.items():
+            ln = line_with(ax, factor * ds[name].values)
+            styles.setdefault(model, set()).add((ln.get_color(), str(ln.get_linestyle()), ln.get_linewidth()))
+    assert all(len(s) == 1 for s in styles.values()), "one style per model in every panel"
+    (c_colour, c_ls, c_lw), (s_colour, s_ls, s_lw) = (styles[m].pop() for m in MODELS)
+    assert c_colour != s_colour and c_ls != s_ls
+    assert c_lw > s_lw, "the compliant line is wider than the stick-slip line drawn over it"
+    (ax,) = panel(fig, "θ²")
+    under, over = (line_with(ax, runs[m]["theta2"].values) for m in MODELS)
+    assert under.get_zorder() < over.get_zorder()
+    assert {"Compliant Sliding", "Stick-Slip"} <= set(legend_labels(fig))
+
+
+def test_largest_interpenetration_in_mm():
+    runs = pair()
+    fig = studyplots.histories([("p", runs)], "caption")
+    (ax,) = panel(fig, "$|I|$")
+    assert "(mm)" in ax.get_ylabel()
+    ds = runs["stick_slip"]
+    line_with(ax, 1e3 * np.max(np.abs([ds[f"I_{c}"].values for c in "ABCD"]), axis=0))
+
+
+def test_capacity_and_failure_times_draw_vertical_lines():
+    cut = history("compliant", t_end=0.3, capacity_exceeded_at_s=0.3, capacity_exceeded_plate="RB1",
+                  capacity_exceeded_by_m=0.004, capacity_policy="stop", stopped_at_s=0.3)
+    failed = history("stick_slip", t_end=0.61, failed=1, failure_time_s=0.62,
+                     failure_message="Newton-Raphson did not converge in 25 iterations at step 62")
+    fig = studyplots.histories([("quiet", pair()), ("events", {"compliant": cut, "stick_slip": failed})], "c")
+    quiet, events = ([ax for ax in fig.axes if ax.get_subplotspec().colspan.start == k] for k in (0, 1))
+    assert len(events) == 4 and all(vertical_lines(ax) == [0.3, 0.62] for ax in events)
+    assert all(vertical_lines(ax) == [] for ax in quiet)
+    title = " ".join(events[0].get_title(loc="left").split())  # wrapped to the column width
+    assert "RB1 ring reached at 0.3 s" in title and "cut at 0.3 s" in title and "'stop'" in title
+    assert "solver failed at 0.62 s" in title and "did not converge" in title
+    assert "pad reaches a retaining ring" in legend_labels(fig)
+    assert "solver failed (history ends)" in legend_labels(fig)
+
+
+def test_one_model_and_several_points_share_time_within_a_point():
+    points = [(f"scale = {k}", pair() if k != 2 else {"stick_slip": history("stick_slip")}) for k in range(5)]
+    fig = studyplots.histories(points, "caption")
+    columns = {}
+    for ax in fig.axes:
+        if ax.get_visible():
+            spec = ax.get_subplotspec()
+            columns.setdefault((spec.rowspan.start // 4, spec.colspan.start), []).append(ax)
+    assert len(columns) == 5 and all(len(col) == 4 for col in columns.values())
+    for col in columns.values():
+        assert all(col[0].get_shared_x_axes().joined(col[0], ax) for ax in col)
+    first, second = columns[(0, 0)], columns[(0, 1)]
+    assert not first[0].get_shared_x_axes().joined(first[0], second[0])
+    titles = [col[0].get_title(loc="left") for col in columns.values()]
+    assert titles == [f"({'abcde'[k]}) scale = {k}" for k in range(5)]
+
+
+def test_histories_need_a_point():
+    with pytest.raises(ValueError, match="no history points"):
+        studyplots.histories([], "caption")
+
+
+# --- summaries over the sweep ----------------------------------------------------------------------------
+def test_one_dimensional_sweep_draws_lines_with_marked_points():
+    x = [4.0, 6.0, 8.0, 10.0, 12.0]
+    cap = {"stick_slip": np.array([0, 0, 0, 1, 1], bool)}
+    bad = {"compliant": np.array([0, 0, 0, 0, 1], bool)}
+    ds = study({"alpha21": x}, capacity=cap, failed=bad)
+    fig = studyplots.maps(ds, {"DFP1": {"alpha21": 10.0}}, "caption")
+    assert meshes(fig) == []
+    (ax,) = panel(fig, "max |θ²|")
+    for model in MODELS:
+        expected = ds["theta2_max_abs"].sel(model=model).values
+        ln = line_with(ax, expected)
+        assert np.allclose(ln.get_xdata(), x) and ln.get_linestyle() != "None" and ln.get_marker() != "None"
+    flagged = {ln.get_gid(): list(ln.get_xdata()) for ln in ax.get_lines() if ln.get_gid()}
+    assert flagged == {"capacity_exceeded": [10.0, 12.0], "failed": [12.0]}
+    assert 10.0 in vertical_lines(ax), "the marked point"
+    assert ax.get_xlabel() == r"$\alpha^{21}$ (°)"
+    assert ax.get_xscale() == "linear"
+
+
+def test_a_model_failing_everywhere_is_marked_failed_not_undefined():
+    ds = study({"omega": [20.0, 30.0, 40.0]}, failed={"compliant": np.ones(3, bool)})
+    fig = studyplots.maps(ds, {}, "caption")
+    (ax,) = panel(fig, "max rise")
+    assert [list(ln.get_xdata()) for ln in ax.get_lines() if ln.get_gid() == "failed"] == [[20.0, 30.0, 40.0]]
+    assert "not defined" not in ax.get_title()
+    (ax,) = panel(fig, "sticking rotation")
+    assert [ln.get_gid() for ln in ax.get_lines() if ln.get_gid()] == []
+    assert ax.get_title() == "max sticking rotation\n(not defined for Compliant Sliding)"
+    ds = study({"omega": [20.0, 30.0], "scale": [1.0, 2.0]}, failed={m: np.ones((2, 2), bool) for m in MODELS})
+    fig = studyplots.maps(ds, {}, "caption")
+    assert len([ax for ax in fig.axes if ax.get_title()]) == 7  # all but the sticking rotation of compliant
+    assert all(hatched_cells(ax, "failed", [20.0, 30.0], [1.0, 2.0]) == {(0, 0), (0, 1), (1, 0), (1, 1)}
+               for ax in fig.axes if ax.get_title())
+
+
+def test_amplitude_axis_and_summaries_in_paper_units():
+    ds = study({"amplitude": [0.1, 0.2, 0.3]})
+    fig = studyplots.maps(ds, {}, "caption")
+    (ax,) = panel(fig, "max rise of RB3")
+    assert ax.get_xlabel() == "$X_{g,max}$ (cm)" and "(cm)" in ax.get_ylabel()
+    ln = line_with(ax, 100.0 * ds["rise_max"].sel(model="compliant").values)
+    assert np.allclose(ln.get_xdata(), [10.0, 20.0, 30.0])
+    (ax,) = panel(fig, "interpenetration")
+    assert "(mm)" in ax.get_ylabel()
+    line_with(ax, 1e3 * ds[[f"I_{c}_max" for c in "ABCD"]].to_array().max("variable").sel(model="compliant").values)
+
+
+def test_categorical_axis_marks_each_category_at_an_integer():
+    names = ["DFP1", "DFP2", "Mine"]
+    ds = study({"prototype": names}, failed={"stick_slip": np.array([0, 1, 0], bool)})
+    fig = studyplots.maps(ds, {}, "caption")
+    assert meshes(fig) == []
+    for ax in panel(fig, "("):
+        assert list(ax.get_xticks()) == [0, 1, 2]
+        assert [t.get_text() for t in ax.get_xticklabels()] == names
+    (ax,) = panel(fig, "max |θ²|")
+    for model in MODELS:
+        values = ds["theta2_max_abs"].sel(model=model).values
+        ln = line_with(ax, values)
+        assert list(ln.get_xdata()) == [0.0, 1.0, 2.0] and ln.get_linestyle() == "None"
+    assert [list(ln.get_xdata()) for ln in ax.get_lines() if ln.get_gid() == "failed"] == [[1.0]]
+
+
+def test_categorical_and_numeric_axes_give_a_curve_per_category():
+    ds = study({"prototype": ["DFP1", "DFP2"], "scale": [0.5, 1.0, 1.5]})
+    fig = studyplots.maps(ds, {}, "caption")
+    assert meshes(fig) == []
+    (ax,) = panel(fig, "max |θ²|")
+    for model in MODELS:
+        for proto in ("DFP1", "DFP2"):
+            ln = line_with(ax, ds["theta2_max_abs"].sel(model=model, prototype=proto).values)
+            assert np.allclose(ln.get_xdata(), [0.5, 1.0, 1.5])
+    assert {"prototype = DFP1", "prototype = DFP2"} <= set(legend_labels(fig))
+
+
+def test_two_dimensional_grid_hatches_exactly_the_flagged_cells():
+    xs, ys = [4.0, 6.0, 9.0, 12.0], [0.10, 0.15, 0.20]
+    cap = {"compliant": np.array([[0, 0, 0], [0, 0, 1], [0, 1, 1], [1, 1, 1]], bool),
+           "stick_slip": np.array([[0, 0, 0], [0, 0, 0], [0, 0, 1], [0, 0, 1]], bool)}
+    bad = {"stick_slip": np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 0]], bool)}
+    ds = study({"alpha21": xs, "h2": ys}, capacity=cap, failed=bad)
+    fig = studyplots.maps(ds, {"DFP1": {"alpha21": 9.0, "h2": 0.15}}, "caption")
+    rows = {model: [ax for ax in fig.axes if ax.get_title().startswith(studyplots.MODEL_TITLES[model] + ":")]
+            for model in MODELS}
+    assert len(rows["compliant"]) == 3 and len(rows["stick_slip"]) == 4  # no sticking rotation for compliant
+    for model, axes in rows.items():
+        expected_cap = set(zip(*np.nonzero(cap[model])))
+        expected_bad = set(zip(*np.nonzero(bad.get(model, np.zeros((4, 3), bool)))))
+        for ax in axes:
+            assert hatched_cells(ax, "capacity_exceeded", xs, ys) == expected_cap
+            assert hatched_cells(ax, "failed", xs, ys) == expected_bad
+            (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+            shown = np.ma.masked_invalid(mesh.get_array()).mask.reshape(len(ys), len(xs)).T
+            assert np.array_equal(shown, bad.get(model, np.zeros((4, 3), bool)))
+            stars = [ln for ln in ax.get_lines() if ln.get_marker() == "*"]
+            assert [(list(s.get_xdata()), list(s.get_ydata())) for s in stars] == [([9.0], [0.15])]
+            assert ax.get_xlabel() == r"$\alpha^{21}$ (°)" and ax.get_ylabel() == "$h^{2}$ (m)"
+    labels = legend_labels(fig)
+    assert "pad reaches a retaining ring (Compliant Sliding 6, Stick-Slip 2 of 12)" in labels
+    assert "solver failed, no result (Compliant Sliding 0, Stick-Slip 5 of 12)" in labels
+
+
+def test_time_step_axis_on_a_log_scale():
+    ds = study({"dt": [0.001, 0.003, 0.01, 0.03]})
+    fig = studyplots.maps(ds, {}, "caption")
+    assert all(ax.get_xscale() == "log" for ax in panel(fig, "("))
+    fig = studyplots.maps(study({"dt": [0.001, 0.01, 0.1], "omega": [20.0, 30.0]}), {}, "caption")
+    for ax in [ax for ax in fig.axes if ax.get_title()]:
+        assert ax.get_xscale() == "log" and ax.get_yscale() == "linear"
+        lo, hi = ax.get_xlim()
+        assert lo == pytest.approx(0.001 / np.sqrt(10)) and hi == pytest.approx(0.1 * np.sqrt(10))
+
+
+def test_more_than_two_axes_map_the_first_two_numeric_and_say_so():
+    ds = study({"prototype": ["DFP1", "DFP2"], "alpha21": [5.0, 10.0], "h2": [0.1, 0.15, 0.2]})
+    fig = studyplots.maps(ds, {}, "caption")
+    title = figure_title(fig)
+    assert r"maps over $\alpha^{21}$ and $h^{2}$" in title
+    assert "prototype = DFP1 (first of 2 values, the others not drawn)" in title
+    ax = next(ax for ax in fig.axes if ax.get_title() == "Stick-Slip: max |θ²|")
+    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    expected = ds["theta2_max_abs"].sel(model="stick_slip", prototype="DFP1").values.T
+    assert np.allclose(mesh.get_array().reshape(expected.shape), expected)
+
+
+def test_an_axis_of_one_value_is_a_note():
+    ds = study({"alpha21": [5.0, 10.0, 15.0], "h2": [0.15]})
+    fig = studyplots.maps(ds, {}, "caption")
+    assert meshes(fig) == []
+    assert "$h^{2}$ = 0.15 m" in figure_title(fig) and "first of" not in figure_title(fig)
+
+
+# --- files -----------------------------------------------------------------------------------------------
+KINDS = {
+    "map": lambda: studyplots.maps(study({"alpha21": np.linspace(4, 14, 6), "h2": [0.1, 0.15, 0.2, 0.25]},
+                                         capacity={"compliant": np.eye(6, 4, dtype=bool)},
+                                         failed={"stick_slip": np.eye(6, 4, k=1, dtype=bool)}),
+                                   {"DFP1": {"alpha21": 10.0, "h2": 0.15}}, "study synthetic: a map"),
+    "lines": lambda: studyplots.maps(study({"dt": [0.001, 0.003, 0.01, 0.03]},
+                                           capacity={"stick_slip": np.array([0, 0, 1, 1], bool)},
+                                           failed={"compliant": np.array([0, 0, 0, 1], bool)}),
+                                     {"chosen": {"dt": 0.003}}, "study synthetic: lines"),
+    "categories": lambda: studyplots.maps(study({"prototype": ["DFP1", "DFP2", "Mine"]},
+                                                failed={"stick_slip": np.array([0, 1, 0], bool)}),
+                                          {}, "study synthetic: categories"),
+    "histories": lambda: studyplots.histories(
+        [("prototype = DFP1", pair()),
+         ("prototype = DFP2", {"compliant": history("compliant", t_end=0.3, capacity_exceeded_at_s=0.3,
+                                                    capacity_exceeded_plate="RB3", stopped_at_s=0.3),
+                               "stick_slip": history("stick_slip", t_end=0.61, failed=1, failure_time_s=0.62,
+                                                     failure_message="Newton-Raphson did not converge")})],
+        "study synthetic: histories"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_files_are_written_and_reproducible(kind, tmp_path):
+    for k in range(2):
+        save(KINDS[kind](), tmp_path / f"{kind}{k}.png", tmp_path / f"{kind}{k}.pdf")
+    for ext in ("png", "pdf"):
+        first, second = ((tmp_path / f"{kind}{k}.{ext}").read_bytes() for k in range(2))
+        assert len(first) > 10_000 and first == second
