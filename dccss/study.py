@@ -247,9 +247,15 @@ class Study:
         return -(-self.n_cases // self.chunk_size)
 
     def chunk(self, k) -> np.ndarray:
+        """The flattened case indices of chunk k: consecutive in the sweep order, except that with a
+        ``dt`` axis the cases are taken by step size first (a chunk then holds few step sizes,
+        each solved as one batch)."""
         if not 0 <= k < self.n_chunks:
             raise ValueError(f"chunk {k} outside 0..{self.n_chunks - 1}")
-        return np.arange(k * self.chunk_size, min((k + 1) * self.chunk_size, self.n_cases))
+        cases = np.arange(self.n_cases)
+        if "dt" in self.axes:
+            cases = cases[np.argsort(self.dt_of(cases), kind="stable")]
+        return cases[k * self.chunk_size:(k + 1) * self.chunk_size]
 
     def values(self, cases) -> dict:
         """Axis values of the flattened case indices."""
@@ -298,22 +304,21 @@ class Study:
         time step; ``progress(done, total, dt)`` is called as cases are solved (for a log)."""
         cases = self.chunk(k)
         dts = self.dt_of(cases)
-        parts = []
+        out = {}
         for dt in np.unique(dts):
-            group = cases[dts == dt]
-            times = self.times(dt)
+            mine = dts == dt
+            group, times = cases[mine], self.times(dt)
             report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
             try:
-                out = summarize(model, self.geometry(group), self.ground_motion(group, times),
-                                self.theta2_0_of(group), normals=self.normals, options=self.options, times=times,
-                                capacity=self.capacity, progress=report)
+                part = summarize(model, self.geometry(group), self.ground_motion(group, times),
+                                 self.theta2_0_of(group), normals=self.normals, options=self.options, times=times,
+                                 capacity=self.capacity, progress=report)
             except (ConvergenceError, CapacityError) as err:
                 index = getattr(err, "index", None)
                 where = self.point(group[index[0]]) if index else {}
                 raise type(err)(f"sweep point {where or 'of chunk ' + str(k)} ({model}): {err}") from None
-            parts.append((group, out))
-        order = np.argsort(np.concatenate([g for g, _ in parts]), kind="stable")
-        out = {name: np.concatenate([np.atleast_1d(o[name]) for _, o in parts])[order] for name in parts[0][1]}
+            for name, values in part.items():
+                out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
         data = {name: _var(("case",), np.asarray(v), *SUMMARIES[name]) for name, v in out.items()}
         for flag in ("capacity_exceeded", "failed"):
             data[flag].data = data[flag].data.astype(np.int8)

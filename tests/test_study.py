@@ -169,7 +169,8 @@ def test_cluster_generic_profile_matches_local_run(tmp_path):
 def test_dt_axis_runs_each_step_size_as_its_own_batch():
     study = Study.from_config(tiny(dt=None, sweep={"dt": [0.01, 0.005], "alpha21": [8.0, 10.0]}, histories=[
         {"dt": 0.005, "alpha21": 10.0}], chunk_size=3))
-    assert study.shape == (2, 2) and study.n_chunks == 2  # chunk 0 holds both step sizes
+    assert study.shape == (2, 2) and study.n_chunks == 2
+    assert [sorted(study.dt_of(study.chunk(k))) for k in (0, 1)] == [[0.005, 0.005, 0.01], [0.01]]
     combined = study.combine({m: [study.run_chunk(m, k) for k in range(2)] for m in study.models})
     assert combined["dt"].attrs["units"] == "s" and dict(combined.sizes) == {"model": 2, "dt": 2, "alpha21": 2}
     for dt in (0.01, 0.005):

@@ -19,7 +19,7 @@ with logged(snakemake.log[0]) as log:
         now = time.monotonic() - start
         if n == total or now - shown[0] >= 5.0:
             shown[0] = now
-            print(f"  dt = {dt:g} s: {size} cases at step {n}/{total} ({100 * n / total:.0f} %), {now:.1f} s")
+            print(f"  dt = {dt:g} s: {size} case(s) at step {n}/{total} ({100 * n / total:.0f} %), {now:.1f} s")
 
     ds = study.run_chunk(model, k, progress)
     write_netcdf(ds, snakemake.output[0])
