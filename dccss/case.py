@@ -34,9 +34,9 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from .checks import CaseError, check_keys, choice, number
-from .excitation import Scaled, Sine, Table
-from .geometry import Geometry
+from .checks import ON_FAILURE, CaseError, check_keys, choice, number
+from .excitation import Scaled, Sine, Table, check_step
+from .geometry import PARAMETERS, Geometry
 from .kinematics import NORMALS
 from .models import MODELS
 from .newton import NewtonOptions
@@ -46,9 +46,6 @@ from .simulation import CAPACITY_POLICIES, simulate
 REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
             "on_failure": "stop"}
-#: on_failure in case and study files -> the solver's policy (newton.FAILURE_POLICIES)
-ON_FAILURE = {"stop": "raise", "mark": "mark"}
-GEOMETRY_KEYS = tuple(TABLE1["DFP1"])
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
 EXCITATION_OPTIONAL = {"sine": ("scale",), "table": ("scale",), "record": ("scale", "window", "baseline", "units")}
 
@@ -59,8 +56,8 @@ def geometry_from(value, key="prototype") -> Geometry:
         if value not in TABLE1:
             raise CaseError(f"{key}: unknown prototype {value!r}; known: {sorted(TABLE1)}")
         value = TABLE1[value]
-    check_keys(value, key, GEOMETRY_KEYS)
-    params = {k: number(value[k], f"{key}.{k}") for k in GEOMETRY_KEYS}
+    check_keys(value, key, PARAMETERS)
+    params = {k: number(value[k], f"{key}.{k}") for k in PARAMETERS}
     try:
         return Geometry.from_degrees(**params)
     except ValueError as err:
@@ -170,10 +167,7 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
         raise CaseError(f"id: expected a string, got {m['id']!r}")
     geometry = geometry_from(m["prototype"])
     excitation = excitation_from(m["excitation"], base, geometry)
-    dt = number(m["dt"], "dt", positive=True)
-    span = excitation.t_end - excitation.t_start
-    if dt > span:
-        raise CaseError(f"dt: {dt!r} s is larger than the excitation's duration {span!r} s")
+    dt = check_step(m["dt"], excitation, "dt")
     return Case(geometry=geometry, excitation=excitation, dt=dt,
                 model=choice(m["model"], "model", MODELS),
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),

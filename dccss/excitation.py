@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .checks import number
+from .checks import CaseError, number
 
 
 def _number(name, value, *, positive=False):
@@ -29,16 +29,26 @@ class Sine:
         object.__setattr__(self, "duration", _number("duration", self.duration, positive=True))
 
     t_start = 0.0
+    #: what a sweep may vary, per case: displacement(t, amplitude=..., omega=...)
+    parameters = ("amplitude", "omega")
 
     @property
     def t_end(self):
         return self.duration
 
-    def displacement(self, t):
-        return self.amplitude * np.sin(self.omega * np.asarray(t, dtype=float))
+    def displacement(self, t, amplitude=None, omega=None):
+        """X_g (m) at times t (s); ``amplitude``/``omega`` (arrays) evaluate a batch of sines at once
+        (broadcast against t: pass t[:, None] for (T, n))."""
+        amplitude, omega = self._batch(amplitude, omega)
+        return amplitude * np.sin(omega * np.asarray(t, dtype=float))
 
-    def velocity(self, t):
-        return self.amplitude * self.omega * np.cos(self.omega * np.asarray(t, dtype=float))
+    def velocity(self, t, amplitude=None, omega=None):
+        """dX_g/dt (m/s), as ``displacement``."""
+        amplitude, omega = self._batch(amplitude, omega)
+        return amplitude * omega * np.cos(omega * np.asarray(t, dtype=float))
+
+    def _batch(self, amplitude, omega):
+        return (self.amplitude if amplitude is None else amplitude, self.omega if omega is None else omega)
 
     def attrs(self) -> dict:
         return {"excitation": "sine", "amplitude_m": self.amplitude, "omega_rad_per_s": self.omega,
@@ -54,6 +64,7 @@ class Table:
     displacement_samples: np.ndarray  # (n,) m
     source: str = "arrays"
     kind = "table"
+    parameters = ()
 
     def __post_init__(self):
         t = np.asarray(self.time, dtype=float)
@@ -123,6 +134,7 @@ class Scaled:
 
     excitation: object
     factor: float
+    parameters = ()
 
     @property
     def kind(self):
@@ -146,12 +158,20 @@ class Scaled:
         return {**self.excitation.attrs(), "excitation_scale": self.factor}
 
 
-def step_times(excitation, dt) -> np.ndarray:
-    """t_n = t_start + n dt, n = 0..N, the last step ending at or before t_end."""
-    dt = number(dt, "dt", positive=True)
+def check_step(dt, excitation, key="dt") -> float:
+    """The time step dt (s) as a float: a number > 0 no larger than the excitation's duration;
+    a CaseError names ``key`` otherwise."""
+    dt = number(dt, key, positive=True)
     span = excitation.t_end - excitation.t_start
     if dt > span * (1 + 1e-12):
-        raise ValueError(f"dt = {dt!r} s is larger than the excitation's duration {span!r} s")
+        raise CaseError(f"{key}: {dt!r} s is larger than the excitation's duration {span!r} s")
+    return dt
+
+
+def step_times(excitation, dt) -> np.ndarray:
+    """t_n = t_start + n dt, n = 0..N, the last step ending at or before t_end."""
+    dt = check_step(dt, excitation)
+    span = excitation.t_end - excitation.t_start
     ratio = span / dt
     n = round(ratio) if abs(ratio - round(ratio)) < 1e-9 * max(1.0, ratio) else int(np.floor(ratio))
     return excitation.t_start + dt * np.arange(n + 1)

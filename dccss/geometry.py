@@ -296,6 +296,10 @@ class Geometry:
         return np.vstack([low, up, low[:1]])
 
 
+#: the 13 Table 1 parameters of a device, in order (lengths in m, angles in degrees in files)
+PARAMETERS = tuple(f.name for f in fields(Geometry))
+
+
 def _section_centroid(R, alpha, hmin, hr, tr):
     """Height of a plate section's centroid above the most depressed point of its recess.
 

@@ -12,20 +12,67 @@ Each step t_{n-1} -> t_n starts from the converged q(t_{n-1}) and
 Both start from the compatible configuration at theta^2(t_0) (RB3 offset by L sin theta^2).
 X_g is (T,) for one case or (T, ...) for a batch; geometry and theta^2(t_0) may be batches too.
 
-``compliant_steps``/``stick_slip_steps`` yield one dict per step (a sweep summarises them on
-the fly); ``compliant``/``stick_slip`` collect whole histories as arrays, time first, which
-``dccss.results`` turns into datasets.
+``compliant_steps``/``stick_slip_steps`` yield one typed record per step (``CompliantStep``,
+``StickSlipStep``; a sweep summarises them on the fly); ``collect`` stacks them into whole
+histories as arrays, time first, which ``dccss.results`` turns into datasets.
+
+The models are data: ``REGISTRY`` holds one ``Model`` per model (name, title, stepper, step
+record, the diagnostics its datasets carry and the summaries its sweeps keep). Nothing outside
+this module branches on a model's name; adding a model is adding an entry.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from . import newton
 from .constraints import Compliant, Slipping, Sticking, diagonal
-from .kinematics import RB3, all_corners, circle_centre, contact_point, dot, frames, local
+from .kinematics import (
+    CORNERS,
+    RB3,
+    all_corners,
+    circle_centre,
+    contact_angle,
+    contact_point,
+    dot,
+    frames,
+    interpenetration,
+    local,
+)
 
-MODELS = ("compliant", "stick_slip")
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """The configuration at t_n and how the solver got there (n = 0: the start, no solve)."""
+
+    n: int
+    q: np.ndarray  # (..., 9) configuration at t_n (end of the step)
+    newton_iterations: object  # int or (...,) Newton updates of the step (its last phase)
+    residual: object  # float or (...,) final max |constraint residual| (m)
+
+
+@dataclass(frozen=True, slots=True)
+class CompliantStep(Step):
+    """A compliant sliding step: also the plate-frame positions of A..D at t_n (``local``) and the
+    contact data of the step (plate-frame points and normals of A..D, complex)."""
+
+    local: tuple
+    point: tuple
+    normal: tuple
+
+
+@dataclass(frozen=True, slots=True)
+class StickSlipStep(Step):
+    """A stick-slip step: also the configuration at the end of its sticking phase (NaN at n = 0),
+    the jammed diagonal (True: B-C) and the sticking phase's solver figures."""
+
+    q_stick: np.ndarray
+    diagonal_BC: object
+    newton_iterations_stick: object
+    residual_stick: object
 
 
 def _start(geometry, Xg, theta2_0):
@@ -81,20 +128,18 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
     F = frames(q)
     locals_ = [local(F, c) for c in corners]
     points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
-    yield {"n": 0, "q": q, "local": locals_, "point": points, "normal": normals_, "newton_iterations": 0,
-           "residual": 0.0}
+    yield CompliantStep(0, q, 0, 0.0, locals_, points, normals_)
     history = [q]  # the last converged configurations, newest last, for the predictor
     for n in range(1, len(Xg)):
         cset = Compliant(corners, Xg[n], Rx3, points, normals_)
         result = newton.solve(cset, _extrapolate(history), options, _context(n, times, cset.phase))
-        step = {"n": n, "q": _wrapped(result.q), "point": points, "normal": normals_,
-                "newton_iterations": result.iterations, "residual": result.residual}
-        q = step["q"]
+        q = _wrapped(result.q)
         history = history[-3:] + [q]
         F = frames(q)  # the next step's contact data
         locals_ = [local(F, c) for c in corners]
+        step_points, step_normals = points, normals_
         points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
-        yield step | {"local": locals_}
+        yield CompliantStep(n, q, result.iterations, result.residual, locals_, step_points, step_normals)
 
 
 def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
@@ -120,8 +165,7 @@ def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=ne
     q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
     batch = np.ndim(Xg) > 1
     fixed = {False: diagonal(geometry, False), True: diagonal(geometry, True)}
-    yield {"n": 0, "q": q, "q_stick": np.full_like(q, np.nan), "diagonal_BC": np.zeros(np.shape(q)[:-1], bool),
-           "newton_iterations_stick": 0, "newton_iterations": 0, "residual_stick": 0.0, "residual": 0.0}
+    yield StickSlipStep(0, q, 0, 0.0, np.full_like(q, np.nan), np.zeros(np.shape(q)[:-1], bool), 0, 0.0)
     previous = None  # (q(t_{n-2}), q_stick(t_{n-1}), diagonal) for the predictors
     for n in range(1, len(Xg)):
         down = Xg[n] < Xg[n - 1]
@@ -144,60 +188,136 @@ def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=ne
         r2 = newton.solve(slip, slip_guess, options, _context(n, times, slip.phase))
         previous = (q, q_stick, down)
         q = _wrapped(r2.q)
-        yield {"n": n, "q": q, "q_stick": q_stick, "diagonal_BC": down,
-               "newton_iterations_stick": r1.iterations, "newton_iterations": r2.iterations,
-               "residual_stick": r1.residual, "residual": r2.residual}
-
-
-def _collect(steps, complex_keys=()) -> dict:
-    """Stack the per-step dicts into arrays, time first (contact data: last axis of 4)."""
-    rows = list(steps)
-    out = {}
-    one_case = np.ndim(rows[-1]["q"]) == 1
-    for key in rows[0]:
-        if key == "n":
-            continue
-        values = [r[key] for r in rows]
-        if one_case:  # scalars, (9,) arrays or 4-tuples: one call
-            out[key] = np.array(values)
-            continue
-        if key in complex_keys:
-            values = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in values]
-        shape = np.shape(values[-1])  # step 0 may hold scalars where later steps hold batch arrays
-        out[key] = np.stack([np.broadcast_to(v, shape) for v in values])
-    return out
+        yield StickSlipStep(n, q, r2.iterations, r2.residual, q_stick, down, r1.iterations, r1.residual)
 
 
 def collect(steps) -> dict:
-    """A history from per-step dicts (of ``compliant_steps`` or ``stick_slip_steps``), plus ``Rx3``."""
-    out = _collect(steps, complex_keys=("point", "normal", "local"))
+    """A history from step records: each field stacked into an array, time first (contact data:
+    last axis of 4), plus ``Rx3``, the guided abscissa of RB3."""
+    rows = list(steps)
+    out = {}
+    one_case = np.ndim(rows[-1].q) == 1
+    for f in fields(rows[0]):
+        if f.name == "n":
+            continue
+        values = [getattr(r, f.name) for r in rows]
+        if one_case:  # scalars, (9,) arrays or 4-tuples: one call
+            out[f.name] = np.array(values)
+            continue
+        if isinstance(values[-1], tuple):  # contact data: one complex array per corner
+            values = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in values]
+        shape = np.shape(values[-1])  # step 0 may hold scalars where later steps hold batch arrays
+        out[f.name] = np.stack([np.broadcast_to(v, shape) for v in values])
     out["Rx3"] = out["q"][0, ..., RB3]
     return out
 
 
+# --- what each model's datasets and summaries carry --------------------------------------------
+def _compliant_diagnostics(history, geometry) -> dict:
+    """|C_q| at each step's solution (Eq. 29, the solver's own constraint set) and the contact
+    angles at the previous contact points: {name: (values, units, long_name)}."""
+    corners = all_corners(geometry)
+    normals_ = [history["normal"][..., i] for i in range(4)]
+    out = {"det_Cq": (determinant(history, geometry), "m",
+                      "determinant |C_q| of the constraint Jacobian (Eq. 29) at the step's solution")}
+    for i, c in enumerate(corners):
+        out[f"alpha_{c.name}"] = (np.degrees(contact_angle(normals_[i], c)), "degree",
+                                  f"contact angle alpha of {c.name}2 at the previous contact point")
+    return out
+
+
+def determinant(history, geometry):
+    """|C_q| (Eq. 29) of the compliant steps of ``history`` at their solutions (m)."""
+    corners = all_corners(geometry)
+    cset = Compliant(corners, history["q"][..., 0], history["Rx3"],
+                     [history["point"][..., i] for i in range(4)], [history["normal"][..., i] for i in range(4)])
+    return cset.determinant(history["q"])
+
+
+def _stick_slip_diagnostics(history, geometry) -> dict:
+    """The end-of-sticking configuration's interpenetration and the jammed diagonal."""
+    Is = interpenetration(history["q_stick"], geometry)
+    out = {f"I_{c}_stick": (Is[..., i], "m", f"interpenetration at corner {c}2 at the end of the sticking phase")
+           for i, c in enumerate(CORNERS)}
+    out["sticking_diagonal"] = (history["diagonal_BC"].astype(np.int8), "1", "diagonal jammed in the sticking phase",
+                                {"flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "A2D2 B2C2"})
+    out["newton_iterations_stick"] = (history["newton_iterations_stick"], "1",
+                                      "Newton-Raphson iterations of the sticking phase")
+    out["newton_residual_stick"] = (history["residual_stick"], "m",
+                                    "final max |constraint residual| of the sticking phase")
+    return out
+
+
+def _stick_slip_summary(step, previous_theta2, rise_of) -> dict:
+    """Per-step values of the stick-slip summaries: the sticking rotation (deg) and rise (m)."""
+    theta2_stick = np.degrees(step.q_stick[..., 5])
+    turn = np.abs(theta2_stick - previous_theta2) if previous_theta2 is not None else np.nan * theta2_stick
+    return {"sticking_rotation_max": turn, "rise_stick_max": rise_of(step.q_stick)}
+
+
+@dataclass(frozen=True)
+class Model:
+    """A kinematic model as data.
+
+    name, title : identifier (files, configs) and the paper's name.
+    steps : the step generator ``steps(geometry, Xg, theta2_0, *, normals, options, times)``.
+    record : the type of its step records.
+    diagnostics : ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``,
+        the variables only this model's datasets carry (besides the configuration at the end
+        of each step, which every model has).
+    stages : the configurations a step stores besides its end (suffix -> long-name phrase).
+    summaries : {name: (units, long_name)} of the sweep summaries only this model has, computed
+        per step by ``summary(step, previous_theta2_deg, rise_of)`` and reduced by their max.
+    iteration_fields : the step fields that count Newton iterations (summed per step).
+    """
+
+    name: str
+    title: str
+    steps: Callable
+    record: type
+    diagnostics: Callable
+    stages: dict
+    summaries: dict
+    summary: Callable | None
+    iteration_fields: tuple
+
+
+REGISTRY = {m.name: m for m in (
+    Model("compliant", "Compliant Sliding", compliant_steps, CompliantStep, _compliant_diagnostics, {}, {}, None,
+          ("newton_iterations",)),
+    Model("stick_slip", "Stick-Slip", stick_slip_steps, StickSlipStep, _stick_slip_diagnostics,
+          {"_stick": " at the end of the sticking phase"},
+          {"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
+                                               "|theta2_stick - theta2(t_n-1)|"),
+           "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
+          _stick_slip_summary, ("newton_iterations", "newton_iterations_stick")),
+)}
+MODELS = tuple(REGISTRY)
+
+
+def model(name) -> Model:
+    """The registry entry of ``name``; a ValueError names the known models."""
+    if name not in REGISTRY:
+        raise ValueError(f"model must be one of {MODELS}, got {name!r}")
+    return REGISTRY[name]
+
+
+def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:
+    """The whole history of model ``name`` (arrays, time first; see ``collect``). Keywords as
+    for the step generators."""
+    return collect(model(name).steps(geometry, Xg, theta2_0, **kw))
+
+
+def steps(name, geometry, Xg, theta2_0=0.0, **kw):
+    """The step records of model ``name``, one per step."""
+    return model(name).steps(geometry, Xg, theta2_0, **kw)
+
+
 def compliant(geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """Compliant sliding history: arrays ``q`` (T, ..., 9); ``point``, ``normal`` (T, ..., 4)
-    complex; ``newton_iterations``, ``residual`` (T, ...); ``Rx3`` the guided abscissa of RB3.
-    Keywords as for ``compliant_steps``."""
-    return collect(compliant_steps(geometry, Xg, theta2_0, **kw))
+    """Compliant sliding history (``run("compliant", ...)``)."""
+    return run("compliant", geometry, Xg, theta2_0, **kw)
 
 
 def stick_slip(geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """Stick-slip history: arrays ``q``, ``q_stick`` (T, ..., 9), ``diagonal_BC``,
-    ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
-    Keywords as for ``stick_slip_steps``."""
-    return collect(stick_slip_steps(geometry, Xg, theta2_0, **kw))
-
-
-def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """Dispatch to ``compliant`` or ``stick_slip`` by name."""
-    if model not in MODELS:
-        raise ValueError(f"model must be one of {MODELS}, got {model!r}")
-    return (compliant if model == "compliant" else stick_slip)(geometry, Xg, theta2_0, **kw)
-
-
-def steps(model, geometry, Xg, theta2_0=0.0, **kw):
-    """Dispatch to ``compliant_steps`` or ``stick_slip_steps`` by name."""
-    if model not in MODELS:
-        raise ValueError(f"model must be one of {MODELS}, got {model!r}")
-    return (compliant_steps if model == "compliant" else stick_slip_steps)(geometry, Xg, theta2_0, **kw)
+    """Stick-slip history (``run("stick_slip", ...)``)."""
+    return run("stick_slip", geometry, Xg, theta2_0, **kw)

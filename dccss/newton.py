@@ -145,7 +145,7 @@ def _solve_batch(cset, q, options, context):
         q[active] = np.nan
         return NewtonResult(q, iterations, norm, failed | active)
     score = np.where(active, np.where(np.isnan(norm), np.inf, norm), -np.inf)
-    index = np.unravel_index(np.argmax(score), score.shape)
+    index = tuple(int(i) for i in np.unravel_index(np.argmax(score), score.shape))
     _not_converged(cset, g[index], options, context, index)
 
 

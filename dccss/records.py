@@ -653,6 +653,7 @@ class Record:
     """
 
     kind = "record"
+    parameters = ()
 
     def __init__(self, time, acceleration=None, *, velocity=None, displacement=None, units=None, source="arrays",
                  scale=1.0, window=None, baseline=None, sha256=""):

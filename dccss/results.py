@@ -10,10 +10,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from . import models
 from ._version import __version__
-from .constraints import Q_NAMES, Compliant
-from .geometry import Geometry
-from .kinematics import CORNERS, all_corners, contact_angle, corner_diagnostics, interpenetration
+from .constraints import Q_NAMES
+from .geometry import PARAMETERS, Geometry
+from .kinematics import CORNERS, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
 #: The time coordinate is ``t``: seconds elapsed since the start of the imposed ground motion.
@@ -27,9 +28,7 @@ REFERENCE = (
     "Bianco, V.; Monti, G.; Belfiore, N.P. Advanced Multi-Body Modelling of DCCSS Isolators: "
     f"Geometrical Compatibility and Kinematics. Buildings 2021, 11, 50. https://doi.org/{DOI}"
 )
-MODEL_TITLES = {"compliant": "Compliant Sliding", "stick_slip": "Stick-Slip"}
-GEOMETRY_KEYS = ("R1", "R3", "alpha1", "alpha3", "h2", "alpha21", "alpha23", "hr1", "hr3", "hmin1",
-                 "hmin3", "tr1", "tr3")
+MODEL_TITLES = {name: entry.title for name, entry in models.REGISTRY.items()}
 _COORD_LONG = {
     "Rx1": "abscissa of the lower plate RB1", "Ry1": "ordinate of the lower plate RB1",
     "theta1": "rotation of the lower plate RB1", "Rx2": "abscissa of the pad RB2 centroid",
@@ -77,17 +76,32 @@ def geometry_attrs(geometry) -> dict:
 def geometry_from_attrs(attrs) -> Geometry:
     """Rebuild the Geometry recorded in a dataset's global attributes."""
     return Geometry.from_degrees(**{name: attrs[f"{name}_{'deg' if name.startswith('alpha') else 'm'}"]
-                                    for name in GEOMETRY_KEYS})
+                                    for name in PARAMETERS})
+
+
+def global_attrs(title, history, **extra) -> dict:
+    """The CF global attributes every dccss dataset carries, plus ``extra``."""
+    return {"Conventions": "CF-1.11", "title": title, "source": f"dccss {__version__}",
+            "references": REFERENCE, "history": f"computed by dccss {__version__} ({history})",
+            "dccss_version": __version__, **extra}
+
+
+def _variables(table, dims) -> dict:
+    """xarray variables from {name: (values, units, long_name[, attrs])}."""
+    return {name: _var(dims, values, units, long_name, **(rest[0] if rest else {}))
+            for name, (values, units, long_name, *rest) in table.items()}
 
 
 def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt, normals,
                     tol, attrs=None) -> xr.Dataset:
-    """Dataset of one case from the arrays of ``dccss.models`` (time first, no batch dims)."""
+    """Dataset of one case from a history of ``dccss.models`` (time first, no batch dims):
+    the configuration, ground motion, rise, interpenetration and clearances of every step, and
+    what the model's registry entry adds (its diagnostics and the configurations of its stages)."""
+    entry = models.model(model)
     t = (TIME,)
     q = history["q"]
-    Xg = excitation.displacement(times)
     data = {
-        "Xg": _var(t, Xg, "m", "imposed ground displacement X_g"),
+        "Xg": _var(t, excitation.displacement(times), "m", "imposed ground displacement X_g"),
         "Xg_dot": _var(t, excitation.velocity(times), "m s-1", "imposed ground velocity dX_g/dt"),
         **coordinates(q, t),
         "rise": _var(t, q[:, 7] - geometry.Ry3_compatible(0.0), "m",
@@ -102,50 +116,39 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
     data["capacity_exceeded"] = _var(
         t, (gap < 0).any(axis=-1).astype(np.int8), "1", "pad beyond a retaining ring",
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="within_capacity capacity_exceeded")
+    last = " (its last phase)" if entry.stages else ""
     data["newton_iterations"] = _var(t, history["newton_iterations"], "1",
-                                     "Newton-Raphson iterations of the step" +
-                                     (" (slipping phase)" if model == "stick_slip" else ""))
-    data["newton_residual"] = _var(t, history["residual"], "m", "final max |constraint residual|")
-    if model == "compliant":
-        corners = all_corners(geometry)
-        points = [history["point"][..., i] for i in range(4)]
-        normals_ = [history["normal"][..., i] for i in range(4)]
-        cset = Compliant(corners, q[:, 0], history["Rx3"], points, normals_)
-        data["det_Cq"] = _var(t, cset.determinant(q), "m",
-                              "determinant |C_q| of the constraint Jacobian (Eq. 29) at the step's solution")
-        for i, c in enumerate(corners):
-            data[f"alpha_{c.name}"] = _var(t, np.degrees(contact_angle(normals_[i], c)), "degree",
-                                           f"contact angle alpha of {c.name}2 at the previous contact point")
-    else:
-        qs = history["q_stick"]
-        data.update(coordinates(qs, t, "_stick", " at the end of the sticking phase"))
-        Is = interpenetration(qs, geometry)
-        for i, c in enumerate(CORNERS):
-            data[f"I_{c}_stick"] = _var(t, Is[:, i], "m",
-                                        f"interpenetration at corner {c}2 at the end of the sticking phase")
-        diag = history["diagonal_BC"].astype(np.int8)
-        data["sticking_diagonal"] = _var(t, diag, "1", "diagonal jammed in the sticking phase",
-                                         flag_values=np.array([0, 1], dtype=np.int8),
-                                         flag_meanings="A2D2 B2C2")
-        data["newton_iterations_stick"] = _var(t, history["newton_iterations_stick"], "1",
-                                               "Newton-Raphson iterations of the sticking phase")
-        data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
-                                             "final max |constraint residual| of the sticking phase")
+                                     f"Newton-Raphson iterations of the step{last}")
+    data["newton_residual"] = _var(t, history["residual"], "m", f"final max |constraint residual|{last}")
+    for suffix, when in entry.stages.items():
+        data.update(coordinates(history["q" + suffix], t, suffix, when))
+    data.update(_variables(entry.diagnostics(history, geometry), t))
     ds = xr.Dataset(data, coords={TIME: time_coordinate(times)})
-    ds.attrs = {
-        "Conventions": "CF-1.11",
-        "title": f"DCCSS kinematics, {MODEL_TITLES[model]} model",
-        "source": f"dccss {__version__}, planar three-rigid-body kinematic model",
-        "references": REFERENCE,
-        "history": f"computed by dccss {__version__} ({MODEL_TITLES[model]} model)",
-        "model": model,
-        "normals": normals,
-        "theta2_0_deg": float(np.degrees(theta2_0)),
-        "dt_s": float(dt),
-        "newton_tol_m": float(tol),
-        "dccss_version": __version__,
-        **geometry_attrs(geometry),
-        **excitation.attrs(),
-        **(attrs or {}),
-    }
+    ds.attrs = global_attrs(f"DCCSS kinematics, {entry.title} model",
+                            f"{entry.title} model", model=model, normals=normals,
+                            theta2_0_deg=float(np.degrees(theta2_0)), dt_s=float(dt), newton_tol_m=float(tol),
+                            **geometry_attrs(geometry), **excitation.attrs(), **(attrs or {}))
+    ds.attrs["source"] += ", planar three-rigid-body kinematic model"
+    return ds
+
+
+def breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs=None) -> xr.Dataset:
+    """Fig. 7 dataset from the two-step compliant history of a breakaway batch (dims dXg,
+    theta2_0): interpenetration after the first step, |C_q|, the configurations before and after."""
+    q, q0 = history["q"][1], history["q"][0]
+    d = ("dXg", "theta2_0")
+    I = interpenetration(q, geometry)
+    data = {f"I_{c}": _var(d, I[..., i], "m", f"interpenetration at corner {c}2 after the first step")
+            for i, c in enumerate(CORNERS)}
+    data["det_Cq"] = _var(d, models.determinant(history, geometry)[1], "m",
+                          "determinant |C_q| (Eq. 29) of the first step")
+    data["newton_iterations"] = _var(d, history["newton_iterations"][1], "1", "Newton-Raphson iterations")
+    data.update(coordinates(q, d, "", " after the first step"))
+    data.update(coordinates(q0, d, "_t0", " in the initial compatible configuration"))
+    ds = xr.Dataset(data, coords={
+        "theta2_0": _var(("theta2_0",), np.degrees(theta2_0), "degree", "initial pad rotation theta2(t0)"),
+        "dXg": _var(("dXg",), sizes, "m", "imposed ground displacement of the first step")})
+    ds.attrs = global_attrs("DCCSS breakaway: interpenetration at the first compliant sliding step",
+                            "breakaway sweep", model="compliant", normals=normals, **geometry_attrs(geometry),
+                            **(attrs or {}))
     return ds

@@ -6,15 +6,12 @@ import numpy as np
 import xarray as xr
 
 from . import models
-from ._version import __version__
-from .constraints import Compliant
 from .excitation import step_times
-from .kinematics import CORNERS, all_corners, corner_diagnostics, interpenetration
-from .newton import ConvergenceError, NewtonOptions
-from .results import REFERENCE, _var, coordinates, geometry_attrs, history_dataset
+from .kinematics import corner_diagnostics
+from .newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
+from .results import breakaway_dataset, history_dataset
 
 CAPACITY_POLICIES = ("continue", "stop", "error")
-FAILURE_POLICIES = ("raise", "mark")
 PLATES = ("RB1", "RB3")
 
 
@@ -51,8 +48,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
-    if model not in models.MODELS:
-        raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
+    models.model(model)  # a ValueError names the known models
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     if on_failure not in FAILURE_POLICIES:
@@ -66,11 +62,11 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                                  options=options, times=times):
             steps.append(step)
             if progress is not None:
-                progress(step["n"], len(times) - 1)
-            if capacity != "continue" and (corner_diagnostics(step["q"], geometry)[1] < 0).any():
+                progress(step.n, len(times) - 1)
+            if capacity != "continue" and (corner_diagnostics(step.q, geometry)[1] < 0).any():
                 break  # the pad reaches a ring: stop here (or fail below) before solving further
     except ConvergenceError as err:
-        failure = _explain(err, geometry, [s["q"] for s in steps], times)
+        failure = _explain(err, geometry, [s.q for s in steps], times)
         if on_failure == "raise":
             raise failure from None
     ds = history_dataset(model, models.collect(steps), geometry, times[:len(steps)], excitation,
@@ -148,27 +144,8 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
     sizes = np.atleast_1d(steps)
     Xg = np.zeros((2, sizes.size, theta2_0.size))
     Xg[1] = sizes[:, None]
-    h = models.compliant(geometry, Xg, theta2_0, normals=normals, options=options)
-    q, q0 = h["q"][1], h["q"][0]
-    corners = all_corners(geometry)
-    cset = Compliant(corners, q[..., 0], h["Rx3"], [h["point"][1][..., i] for i in range(4)],
-                     [h["normal"][1][..., i] for i in range(4)])
-    I = interpenetration(q, geometry)
-    d = ("dXg", "theta2_0")
-    data = {f"I_{c}": _var(d, I[..., i], "m", f"interpenetration at corner {c}2 after the first step")
-            for i, c in enumerate(CORNERS)}
-    data["det_Cq"] = _var(d, cset.determinant(q), "m", "determinant |C_q| (Eq. 29) of the first step")
-    data["newton_iterations"] = _var(d, h["newton_iterations"][1], "1", "Newton-Raphson iterations")
-    data.update(coordinates(q, d, "", " after the first step"))
-    data.update(coordinates(q0, d, "_t0", " in the initial compatible configuration"))
-    ds = xr.Dataset(data, coords={
-        "theta2_0": _var(("theta2_0",), np.degrees(theta2_0), "degree", "initial pad rotation theta2(t0)"),
-        "dXg": _var(("dXg",), sizes, "m", "imposed ground displacement of the first step")})
-    ds.attrs = {"Conventions": "CF-1.11",
-                "title": "DCCSS breakaway: interpenetration at the first compliant sliding step",
-                "source": f"dccss {__version__}", "references": REFERENCE, "model": "compliant",
-                "history": f"computed by dccss {__version__} (breakaway sweep)",
-                "normals": normals, "dccss_version": __version__, **geometry_attrs(geometry), **(attrs or {})}
+    history = models.run("compliant", geometry, Xg, theta2_0, normals=normals, options=options)
+    ds = breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs)
     if steps.ndim == 0:
         ds = ds.isel(dXg=0)
         ds.attrs["dXg_m"] = float(steps)

@@ -26,9 +26,10 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 
+from .models import REGISTRY
 from .plotting import CAPTION_INCHES, _figure
 from .results import MODEL_TITLES
-from .sweep import STICK_ONLY
+from .sweep import MODEL_SPECIFIC
 
 #: how each model is drawn: compliant wide and solid underneath, stick-slip narrow and dashed on top
 MODEL_LINE = {
@@ -350,7 +351,7 @@ def maps(ds, marks: dict, caption: str) -> Figure:
 def _defined(ds, name, model):
     """Whether a summary exists for a model: not a stick-slip quantity of another model, and a value
     somewhere or no point the solver completed (then every point is marked failed)."""
-    if name in STICK_ONLY and model != "stick_slip":
+    if name in MODEL_SPECIFIC and name not in REGISTRY[model].summaries:
         return False
     sel = ds.sel(model=model)
     return bool(np.isfinite(sel[name].values).any() or sel["failed"].values.all())

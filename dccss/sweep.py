@@ -19,7 +19,7 @@ from .kinematics import CORNERS, corner_diagnostics
 from .newton import NewtonOptions
 from .simulation import CAPACITY_POLICIES, CapacityError
 
-#: summary variable -> (units, long_name); "stick" entries exist for stick-slip only
+#: summary variable -> (units, long_name): those of every model, then each model's own
 SUMMARIES = {
     "theta2_max_abs": ("degree", "largest |theta2| at the end of a step"),
     "theta2_end": ("degree", "residual pad rotation theta2(t_end)"),
@@ -31,19 +31,19 @@ SUMMARIES = {
     "capacity_time": ("s", "time at which the pad first reaches a retaining ring (NaN if it does not)"),
     "newton_iterations_max": ("1", "most Newton-Raphson iterations in a step"),
     "newton_iterations_mean": ("1", "mean Newton-Raphson iterations per step"),
-    "sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, |theta2_stick - theta2(t_n-1)|"),
-    "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase"),
     "failed": ("1", "the solver failed for this case (its summaries are NaN)"),
     "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
+    **{name: spec for entry in models.REGISTRY.values() for name, spec in entry.summaries.items()},
 }
-STICK_ONLY = ("sticking_rotation_max", "rise_stick_max")
+#: summaries that only some models have (NaN for the others in a combined study)
+MODEL_SPECIFIC = tuple(name for entry in models.REGISTRY.values() for name in entry.summaries)
 
 
-#: how each per-step value is reduced over the steps (fmax/fmin skip the NaN of step 0); others
-#: keep their last value
+#: how each per-step value is reduced over the steps (fmax/fmin skip the NaN of step 0; a model's
+#: own summaries are maxima); others keep their last value
 _REDUCE = {"theta2_max_abs": np.fmax, "rise_max": np.fmax, "I_max": np.fmax, "clearance_min": np.fmin,
-           "newton_iterations_max": np.maximum, "iterations": np.add, "sticking_rotation_max": np.fmax,
-           "rise_stick_max": np.fmax}
+           "newton_iterations_max": np.maximum, "iterations": np.add,
+           **{name: np.fmax for name in MODEL_SPECIFIC}}
 
 
 def _last(old, new):
@@ -81,26 +81,25 @@ def _keep(mask, old, new):
 
 
 def _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw):
+    entry = models.model(model)
     rest = geometry.Ry3_compatible(0.0)
     times = kw.get("times")
     mark = kw.get("options", NewtonOptions()).on_failure == "mark"
     acc, previous = None, None
     failure, reached = np.full(shape, np.nan), np.full(shape, np.nan)
     stopped = np.zeros(shape, dtype=bool)  # cases whose history ended at a ring (capacity stop/error)
-    for step in models.steps(model, geometry, Xg, theta2_0, **kw):
-        q, n = step["q"], step["n"]
+    for step in entry.steps(geometry, Xg, theta2_0, **kw):
+        q, n = step.q, step.n
         now = times[n] if times is not None else n
         failure = np.where(np.isnan(failure) & ~stopped & np.isnan(q).any(axis=-1), now, failure)
         theta2, rise = np.degrees(q[..., 5]), q[..., 7] - rest
-        interp, gap = corner_diagnostics(q, geometry, step.get("local"))
-        its = np.asarray(step["newton_iterations"]) + np.asarray(step.get("newton_iterations_stick", 0))
+        interp, gap = corner_diagnostics(q, geometry, getattr(step, "local", None))
+        its = sum(np.asarray(getattr(step, name)) for name in entry.iteration_fields)
         current = {"theta2_max_abs": np.abs(theta2), "rise_max": rise, "I_max": interp,
                    "clearance_min": gap.min(axis=-1), "newton_iterations_max": its, "iterations": its,
                    "theta2_end": theta2, "rise_end": rise, "steps": np.full(shape, n)}
-        if model == "stick_slip":
-            qs = step["q_stick"]
-            turn = np.abs(np.degrees(qs[..., 5]) - previous) if previous is not None else np.nan * theta2
-            current.update(sticking_rotation_max=turn, rise_stick_max=qs[..., 7] - rest)
+        if entry.summary is not None:
+            current.update(entry.summary(step, previous, lambda q: q[..., 7] - rest))
         previous = theta2
         if acc is None:
             acc = current
@@ -125,8 +124,7 @@ def _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw):
            "newton_iterations_mean": np.asarray(acc["iterations"]) / np.maximum(acc["steps"], 1)}
     for i, c in enumerate(CORNERS):
         out[f"I_{c}_max"] = acc["I_max"][..., i]
-    if model == "stick_slip":
-        out.update(sticking_rotation_max=acc["sticking_rotation_max"], rise_stick_max=acc["rise_stick_max"])
+    out.update({name: acc[name] for name in entry.summaries})
     if capacity == "error":  # reaching a ring is this policy's failure
         failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
     failed = ~np.isnan(failure)

@@ -15,7 +15,7 @@ from dccss.excitation import Sine, step_times
 from dccss.geometry import Geometry
 from dccss.newton import NewtonOptions
 from dccss.prototypes import TABLE1
-from dccss.study import Study
+from dccss.studies import Study, combine, history_case, history_mapping, run_chunk
 from dccss.sweep import summarize
 
 TINY = {
@@ -37,11 +37,11 @@ def tiny(**changes):
 
 def test_grid_and_chunks_cover_every_case_once():
     study = Study.from_config(tiny())
-    assert study.shape == (2, 3) and study.n_cases == 6 and study.n_chunks == 2
-    cases = np.concatenate([study.chunk(k) for k in range(study.n_chunks)])
+    assert study.grid.shape == (2, 3) and study.grid.n_cases == 6 and study.grid.n_chunks == 2
+    cases = np.concatenate([study.grid.chunk(k) for k in range(study.grid.n_chunks)])
     assert np.array_equal(cases, np.arange(6))
-    assert study.point(4) == {"alpha21": 10.0, "h2": 0.15}
-    g = study.geometry(np.array([4]))
+    assert study.grid.point(4) == {"alpha21": 10.0, "h2": 0.15}
+    g = study.grid.geometry(np.array([4]))
     assert g.alpha23[0] == pytest.approx(np.radians(10.0))  # symmetric: cap 23 follows cap 21
 
 
@@ -49,9 +49,9 @@ def test_grid_and_chunks_cover_every_case_once():
 def test_chunked_summaries_equal_one_case_runs(model):
     """The batched, chunked sweep gives the one-case path's results to 1e-12."""
     study = Study.from_config(tiny())
-    combined = study.combine({m: [study.run_chunk(m, k) for k in range(study.n_chunks)] for m in study.models})
-    for case in range(study.n_cases):
-        point = study.point(case)
+    combined = combine(study, {m: [run_chunk(study, m, k) for k in range(study.grid.n_chunks)] for m in study.models})
+    for case in range(study.grid.n_cases):
+        point = study.grid.point(case)
         g = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": point["alpha21"], "alpha23": point["alpha21"],
                                      "h2": point["h2"]})
         t = step_times(Sine(0.2, 30.0, 0.3), 0.01)
@@ -169,9 +169,9 @@ def test_cluster_generic_profile_matches_local_run(tmp_path):
 def test_dt_axis_runs_each_step_size_as_its_own_batch():
     study = Study.from_config(tiny(dt=None, sweep={"dt": [0.01, 0.005], "alpha21": [8.0, 10.0]}, histories=[
         {"dt": 0.005, "alpha21": 10.0}], chunk_size=3))
-    assert study.shape == (2, 2) and study.n_chunks == 2
-    assert [sorted(study.dt_of(study.chunk(k))) for k in (0, 1)] == [[0.005, 0.005, 0.01], [0.01]]
-    combined = study.combine({m: [study.run_chunk(m, k) for k in range(2)] for m in study.models})
+    assert study.grid.shape == (2, 2) and study.grid.n_chunks == 2
+    assert [sorted(study.grid.dt_of(study.grid.chunk(k))) for k in (0, 1)] == [[0.005, 0.005, 0.01], [0.01]]
+    combined = combine(study, {m: [run_chunk(study, m, k) for k in range(2)] for m in study.models})
     assert combined["dt"].attrs["units"] == "s" and dict(combined.sizes) == {"model": 2, "dt": 2, "alpha21": 2}
     for dt in (0.01, 0.005):
         for alpha21 in (8.0, 10.0):
@@ -180,21 +180,21 @@ def test_dt_axis_runs_each_step_size_as_its_own_batch():
             h = models.run("stick_slip", g, Sine(0.2, 30.0, 0.3).displacement(t))
             got = combined.sel(model="stick_slip", dt=dt, alpha21=alpha21)
             assert float(got["theta2_end"]) == pytest.approx(np.degrees(h["q"][-1, 5]), abs=1e-12)
-    mapping = study.history_mapping(0, "compliant")
+    mapping = history_mapping(study, 0, "compliant")
     assert mapping["dt"] == 0.005 and mapping["on_failure"] == "mark" and mapping["capacity"] == "continue"
 
 
 def test_auto_chunks_keep_both_cores_busy():
     study = Study.from_config(tiny(chunk_size=None, sweep__alpha21={"start": 8.0, "stop": 10.0, "num": 5}))
-    assert study.n_cases == 15 and [len(study.chunk(k)) for k in range(study.n_chunks)] == [4, 4, 4, 3]
+    assert study.grid.n_cases == 15 and [len(study.grid.chunk(k)) for k in range(study.grid.n_chunks)] == [4, 4, 4, 3]
 
 
 def test_history_mapping_is_a_case_with_the_points_scale():
     study = Study.from_config(tiny(sweep={"scale": [0.5, 1.0]}, histories=[{"scale": 0.5}], capacity="stop"))
-    mapping = study.history_mapping(0, "stick_slip")
+    mapping = history_mapping(study, 0, "stick_slip")
     assert mapping["excitation"] == {**TINY["excitation"], "scale": 0.5} and mapping["capacity"] == "stop"
-    ds = study.history_case(0, "stick_slip").run()
-    full = Study.from_config(tiny(sweep={"scale": [1.0]}, histories=[{"scale": 1.0}])).history_case(0, "stick_slip")
+    ds = history_case(study, 0, "stick_slip").run()
+    full = history_case(Study.from_config(tiny(sweep={"scale": [1.0]}, histories=[{"scale": 1.0}])), 0, "stick_slip")
     assert np.allclose(ds["Xg"].values, 0.5 * full.run()["Xg"].values, rtol=1e-15, atol=0)
 
 
@@ -265,6 +265,7 @@ def test_a_failing_job_leaves_the_full_message_in_its_log(tmp_path):
     run = snakemake(work, "--configfile", "failing.yaml")
     assert run.returncode != 0
     assert "did not converge in sticking" in run.stderr
-    log = (work / "logs/studies/tiny/stick_slip_1.log").read_text()
-    assert "sweep point {'alpha21': 12.0, 'h2': 0.1} (stick_slip)" in log and "did not converge in sticking" in log
-    assert "Traceback" in log
+    failed = [p.read_text() for p in (work / "logs/studies/tiny").glob("stick_slip_*.log") if "Traceback" in p.read_text()]
+    assert len(failed) == 1, "the first failing job stops the workflow"
+    assert "sweep point {'alpha21': " in failed[0] and "'h2': 0.1} (stick_slip)" in failed[0]
+    assert "did not converge in sticking" in failed[0] and "batch index (0,)" in failed[0]

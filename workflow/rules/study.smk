@@ -44,7 +44,7 @@ rule study_history:
         "results/studies/{study}/histories/{model}_{i}.nc",
     params:
         study_dir=str(STUDY_FILE.parent),
-        case=lambda w: STUDY.history_mapping(int(w.i), w.model),
+        case=lambda w: history_mapping(STUDY, int(w.i), w.model),
     log:
         "logs/studies/{study}/history_{model}_{i}.log",
     conda:

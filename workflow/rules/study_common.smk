@@ -6,7 +6,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError
-from dccss.study import Study, sweep_spec
+from dccss.studies import Study, history_mapping, sweep_spec
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
 try:
@@ -25,7 +25,7 @@ def chunk_files():
     return [
         f"results/studies/{STUDY.name}/chunks/{model}_{k}.nc"
         for model in STUDY.models
-        for k in range(STUDY.n_chunks)
+        for k in range(STUDY.grid.n_chunks)
     ]
 
 

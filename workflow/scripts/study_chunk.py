@@ -6,12 +6,12 @@ from pathlib import Path
 from _log import logged
 
 from dccss.files import write_netcdf
-from dccss.study import Study
+from dccss.studies import Study, run_chunk
 
 with logged(snakemake.log[0]) as log:
     study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
     model, k = snakemake.wildcards.model, int(snakemake.wildcards.chunk)
-    cases = study.chunk(k)
+    cases = study.grid.chunk(k)
     print(f"{model}, chunk {k}: {len(cases)} cases")
     start, shown = time.monotonic(), [0.0]
 
@@ -21,7 +21,7 @@ with logged(snakemake.log[0]) as log:
             shown[0] = now
             print(f"  dt = {dt:g} s: {size} case(s) at step {n}/{total} ({100 * n / total:.0f} %), {now:.1f} s")
 
-    ds = study.run_chunk(model, k, progress)
+    ds = run_chunk(study, model, k, progress)
     write_netcdf(ds, snakemake.output[0])
     print(f"{len(cases)} cases done in {time.monotonic() - start:.1f} s: {int(ds['failed'].sum())} failed, "
           f"{int(ds['capacity_exceeded'].sum())} reached a retaining ring")

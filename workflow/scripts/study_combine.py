@@ -6,7 +6,7 @@ from _log import logged
 
 from dccss.files import write_netcdf
 from dccss.results import load
-from dccss.study import Study
+from dccss.studies import Study, combine
 
 with logged(snakemake.log[0]):
     study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
@@ -14,4 +14,4 @@ with logged(snakemake.log[0]):
     for path in snakemake.input:
         ds = load(path)
         chunks[ds.attrs["model"]].append(ds)
-    write_netcdf(study.combine(chunks), snakemake.output[0])
+    write_netcdf(combine(study, chunks), snakemake.output[0])

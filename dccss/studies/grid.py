@@ -1,0 +1,80 @@
+"""The cases of a sweep: the cartesian product of its axes, flattened in the sweep's order."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..excitation import step_times
+from ..geometry import PARAMETERS, Geometry
+
+#: with ``symmetric: true`` the plate-3 and cap-23 parameters follow those of plate 1 and cap 21
+PLATE3_FOLLOWS = {"R3": "R1", "alpha3": "alpha1", "alpha23": "alpha21", "hr3": "hr1", "hmin3": "hmin1",
+                  "tr3": "tr1"}
+
+
+class Grid:
+    """The sweep of a ``Study``: case k is the k-th point of the product of ``study.axes``.
+
+    Every method takes flattened case indices (a 1-D integer array) and returns one value (or one
+    column) per case.
+    """
+
+    def __init__(self, study):
+        self.study = study
+        self.axes = study.axes
+        self.shape = tuple(len(v) for v in self.axes.values())
+        self.n_cases = int(np.prod(self.shape))
+        self.n_chunks = -(-self.n_cases // study.chunk_size)
+
+    def chunk(self, k) -> np.ndarray:
+        """The case indices of chunk k: consecutive in the sweep order, except that with a ``dt``
+        axis the cases are taken by step size first (a chunk then holds few step sizes, each
+        solved as one batch)."""
+        if not 0 <= k < self.n_chunks:
+            raise ValueError(f"chunk {k} outside 0..{self.n_chunks - 1}")
+        cases = np.arange(self.n_cases)
+        if "dt" in self.axes:
+            cases = cases[np.argsort(self.dt_of(cases), kind="stable")]
+        size = self.study.chunk_size
+        return cases[k * size:(k + 1) * size]
+
+    def values(self, cases) -> dict:
+        """{axis: its value for each case}."""
+        idx = np.unravel_index(np.asarray(cases), self.shape)
+        return {name: vals[i] for (name, vals), i in zip(self.axes.items(), idx)}
+
+    def point(self, case) -> dict:
+        """{axis: value} of one case (str for prototype names, float otherwise)."""
+        return {k: (str(v[0]) if k == "prototype" else float(v[0])) for k, v in self.values(np.array([case])).items()}
+
+    def geometry(self, cases) -> Geometry:
+        """The devices of the cases, as one batched Geometry."""
+        study, values = self.study, self.values(cases)
+        if "prototype" in values:
+            params = {k: np.array([float(study.prototypes[p][k]) for p in values["prototype"]]) for k in PARAMETERS}
+        else:
+            params = {k: np.full(len(cases), float(study.prototype[k])) for k in PARAMETERS}
+        params.update({k: v for k, v in values.items() if k in PARAMETERS})
+        if study.symmetric:
+            params.update({k: params[src] for k, src in PLATE3_FOLLOWS.items()})
+        return Geometry.from_degrees(**params)
+
+    def dt_of(self, cases) -> np.ndarray:
+        """The time step of each case (s)."""
+        return self.values(cases).get("dt", np.full(len(cases), self.study.dt))
+
+    def theta2_0_of(self, cases) -> np.ndarray:
+        """The initial pad rotation of each case (rad)."""
+        return np.radians(self.values(cases).get("theta2_0", np.full(len(cases), self.study.theta2_0)))
+
+    def times(self, dt) -> np.ndarray:
+        """The step times at step size dt (s)."""
+        return step_times(self.study.excitation, dt)
+
+    def ground_motion(self, cases, t) -> np.ndarray:
+        """X_g (T, n) of the cases at the step times t: the excitation evaluates its own swept
+        parameters for the batch; ``scale`` multiplies the result."""
+        excitation, values = self.study.excitation, self.values(cases)
+        own = {k: values[k] for k in excitation.parameters if k in values}
+        Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
+        return np.broadcast_to(Xg, (len(t), len(cases))) * values.get("scale", 1.0)

@@ -1,0 +1,73 @@
+"""Running a study: one chunk under one model reduced to summaries, and histories in full."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..case import Case, case_from
+from ..checks import ON_FAILURE
+from ..geometry import PARAMETERS
+from ..newton import ConvergenceError
+from ..results import _var
+from ..simulation import CapacityError
+from ..sweep import SUMMARIES, summarize
+from .combine import axis_variable, study_attrs
+from .grid import PLATE3_FOLLOWS
+
+
+def run_chunk(study, model, k, progress=None) -> xr.Dataset:
+    """Summaries of the cases of chunk k under ``model`` (dimension ``case``): one batch per step
+    size; ``progress(done, total, cases, dt)`` is called after each step (for a log). A failure
+    that stops the study (``on_failure: stop``) names the sweep point."""
+    grid = study.grid
+    cases = grid.chunk(k)
+    dts = grid.dt_of(cases)
+    out = {}
+    for dt in np.unique(dts):
+        mine = dts == dt
+        group, times = cases[mine], grid.times(dt)
+        report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
+        try:
+            part = summarize(model, grid.geometry(group), grid.ground_motion(group, times), grid.theta2_0_of(group),
+                             normals=study.normals, options=study.options, times=times, capacity=study.capacity,
+                             progress=report)
+        except (ConvergenceError, CapacityError) as err:
+            index = getattr(err, "index", None)
+            where = grid.point(group[index[0]]) if index else f"of chunk {k}"
+            raise type(err)(f"sweep point {where} ({model}): {err}") from None
+        for name, values in part.items():
+            out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
+    data = {name: _var(("case",), v, *SUMMARIES[name]) for name, v in out.items()}
+    for flag in ("capacity_exceeded", "failed"):
+        data[flag].data = data[flag].data.astype(np.int8)
+    for name, v in grid.values(cases).items():
+        data[name] = axis_variable(("case",), name, v)
+    ds = xr.Dataset(data, coords={"case": _var(("case",), cases, "1", "flattened sweep index")})
+    ds.attrs = study_attrs(study, model)
+    return ds
+
+
+def history_mapping(study, i, model) -> dict:
+    """The case mapping (``dccss.case``) of the i-th history point under ``model``: all that its
+    result depends on (a workflow reruns the history when, and only when, this changes)."""
+    point = study.histories[i]
+    device = study.prototypes[point["prototype"]] if "prototype" in point else study.prototype
+    full = {k: float(v) for k, v in device.items()}
+    full.update({k: v for k, v in point.items() if k in PARAMETERS})
+    if study.symmetric:
+        full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
+    excitation = dict(study.excitation_spec)
+    for key in (*study.excitation.parameters, "scale"):
+        if key in point:
+            excitation[key] = point[key]
+    policy = {v: k for k, v in ON_FAILURE.items()}[study.options.on_failure]
+    return {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
+            "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
+            "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
+            "capacity": study.capacity, "on_failure": policy}
+
+
+def history_case(study, i, model) -> Case:
+    """The i-th history point under ``model`` as a one-case Case (a full time history)."""
+    return case_from(history_mapping(study, i, model), study.base)

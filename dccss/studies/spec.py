@@ -1,0 +1,239 @@
+"""The study file: keys, types and every sweep point checked before anything runs."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from ..case import excitation_from, geometry_from, newton_from
+from ..checks import ON_FAILURE, CaseError, check_keys, choice, number
+from ..excitation import check_step
+from ..geometry import ANGLES, PARAMETERS
+from ..kinematics import NORMALS
+from ..models import MODELS
+from ..newton import NewtonOptions
+from ..prototypes import TABLE1
+from ..simulation import CAPACITY_POLICIES
+from .grid import PLATE3_FOLLOWS, Grid
+
+#: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``)
+EXCITATION_AXES = ("amplitude", "omega", "scale")
+AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + ("theta2_0", "dt")
+KEYS = {"study", "prototypes", "prototype", "symmetric", "excitation", "theta2_0", "dt", "models", "normals", "sweep",
+        "chunk_size", "marks", "histories", "newton", "on_failure", "capacity"}
+REQUIRED = ("study", "prototype", "excitation", "models", "sweep")
+#: the keys that only the plots and the histories read: the sweep's results do not depend on them
+NOT_SWEPT = ("marks", "histories")
+#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log)
+AUTO_CHUNKS = 4
+
+
+class StudyError(CaseError):
+    """A study file is invalid; the message names the key."""
+
+
+def axis_units(name):
+    """CF units of a sweep axis (None for the categorical prototype axis)."""
+    if name == "prototype":
+        return None
+    if name in ANGLES or name == "theta2_0":
+        return "degree"
+    return {"omega": "rad s-1", "scale": "1", "dt": "s"}.get(name, "m")
+
+
+def axis_values(spec, key) -> np.ndarray:
+    """A sweep axis from a list of numbers or {start, stop, num}."""
+    if isinstance(spec, dict):
+        check_keys(spec, key, ("start", "stop", "num"))
+        num = spec["num"]
+        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+            raise StudyError(f"{key}.num: expected an integer >= 1, got {num!r}")
+        return np.linspace(number(spec["start"], f"{key}.start"), number(spec["stop"], f"{key}.stop"), num)
+    if not isinstance(spec, list):
+        raise StudyError(f"{key}: expected a list of values or {{start, stop, num}}, got {spec!r}")
+    if not spec:
+        raise StudyError(f"{key}: the sweep axis is empty")
+    return np.array([number(v, f"{key}[{i}]") for i, v in enumerate(spec)])
+
+
+def sweep_spec(config: dict, models=None) -> dict:
+    """The part of a study file that the sweep's results depend on: all but the description, the
+    marks and the histories (and, with ``models``, only those models)."""
+    spec = {k: v for k, v in config.items() if k not in NOT_SWEPT}
+    spec["study"] = {"name": config["study"]["name"]}
+    if models is not None:
+        spec["models"] = list(models)
+    return spec
+
+
+@dataclass
+class Study:
+    """A validated study file (see the package docstring); ``grid`` holds its cases."""
+
+    name: str
+    description: str
+    prototype: dict  # the base device's 13 parameters, m and degrees
+    prototypes: dict  # name -> 13 parameters: Table 1 and the study's own
+    symmetric: bool
+    excitation: object  # Sine, Table or Record (unscaled)
+    excitation_spec: dict
+    theta2_0: float  # degrees
+    dt: float | None  # s; None if only a sweep axis gives it
+    models: list
+    normals: str
+    axes: dict  # name -> values (ordered)
+    chunk_size: int
+    capacity: str = "continue"
+    options: NewtonOptions = field(default_factory=NewtonOptions)
+    base: Path = Path(".")
+    marks: dict = field(default_factory=dict)
+    histories: list = field(default_factory=list)
+
+    @cached_property
+    def grid(self) -> Grid:
+        return Grid(self)
+
+    @classmethod
+    def from_config(cls, config: dict, base: Path = Path(".")) -> Study:
+        """Validate a study mapping (keys, types, every sweep point's geometry); errors name the key."""
+        check_keys(config, "study file", REQUIRED, KEYS - set(REQUIRED))
+        name, description = _meta(config["study"])
+        known = _devices(config.get("prototypes", {}))
+        proto = config["prototype"]
+        if isinstance(proto, str):
+            if proto not in known:
+                raise StudyError(f"prototype: unknown prototype {proto!r}; known: {sorted(known)}")
+            proto = known[proto]
+        geometry = geometry_from(proto)  # validates keys and values of the base device
+        symmetric = config.get("symmetric", False)
+        if not isinstance(symmetric, bool):
+            raise StudyError(f"symmetric: expected true or false, got {symmetric!r}")
+        models = config["models"]
+        if not isinstance(models, list) or not models:
+            raise StudyError(f"models: expected a non-empty list of {list(MODELS)}, got {models!r}")
+        for i, m in enumerate(models):
+            choice(m, f"models[{i}]", MODELS)
+        axes = _axes(config["sweep"], known, symmetric)
+        excitation = excitation_from(config["excitation"], base, geometry)
+        for key in ("amplitude", "omega"):
+            if key in axes and key not in excitation.parameters:
+                raise StudyError(f"sweep.{key}: only a sine excitation has an {key}; use 'scale' for "
+                                 f"{config['excitation'].get('kind')!r}")
+        dt = _steps(config, axes, excitation)
+        options = newton_from(config.get("newton"))
+        policy = choice(config.get("on_failure", "mark"), "on_failure", ON_FAILURE)
+        study = cls(name=name, description=description, prototype=dict(proto),
+                    prototypes={k: dict(v) for k, v in known.items()}, symmetric=symmetric, excitation=excitation,
+                    excitation_spec=dict(config["excitation"]),
+                    theta2_0=number(config.get("theta2_0", 0.0), "theta2_0"), dt=dt, models=list(models),
+                    normals=choice(config.get("normals", "signed"), "normals", NORMALS), axes=axes,
+                    chunk_size=_chunk_size(config.get("chunk_size", "auto"), axes),
+                    capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES),
+                    options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=ON_FAILURE[policy]),
+                    base=base)
+        study.marks = _marks(config.get("marks", {}), axes)
+        study.histories = _histories(config.get("histories", []), axes, dt)
+        _check_grid(study.grid)
+        return study
+
+
+def _meta(meta):
+    check_keys(meta, "study", ("name",), ("description",))
+    name = meta["name"]
+    if not isinstance(name, str) or not name.replace("_", "").replace("-", "").isalnum():
+        raise StudyError(f"study.name: expected a name of letters, digits, '-' or '_', got {name!r}")
+    return name, str(meta.get("description", ""))
+
+
+def _devices(own) -> dict:
+    """Table 1 and the study's own devices, each validated."""
+    if not isinstance(own, dict):
+        raise StudyError(f"prototypes: expected a mapping of names to devices, got {own!r}")
+    for label, params in own.items():
+        geometry_from(params, f"prototypes.{label}")
+    return {**TABLE1, **own}
+
+
+def _axes(sweep, known, symmetric) -> dict:
+    if not isinstance(sweep, dict) or not sweep:
+        raise StudyError("sweep: expected a mapping of at least one axis name to its values")
+    axes = {}
+    for key, spec in sweep.items():
+        if key not in AXES:
+            raise StudyError(f"sweep: unknown axis {key!r}; allowed: {list(AXES)}")
+        if symmetric and key in PLATE3_FOLLOWS:
+            raise StudyError(f"sweep.{key}: with symmetric: true, {key} follows {PLATE3_FOLLOWS[key]}; "
+                             f"sweep {PLATE3_FOLLOWS[key]} instead")
+        if key != "prototype":
+            axes[key] = axis_values(spec, f"sweep.{key}")
+            continue
+        if not isinstance(spec, list) or not spec:
+            raise StudyError(f"sweep.prototype: expected a non-empty list of device names, got {spec!r}")
+        for i, label in enumerate(spec):
+            if label not in known:
+                raise StudyError(f"sweep.prototype[{i}]: unknown prototype {label!r}; known: {sorted(known)}")
+        axes[key] = np.array(spec, dtype=str)
+    return axes
+
+
+def _steps(config, axes, excitation) -> float | None:
+    """The study's dt (None if only the sweep gives it); every step size checked."""
+    if "dt" not in config and "dt" not in axes:
+        raise StudyError("dt: missing: give the time step (s), or sweep it (sweep.dt)")
+    for i, value in enumerate(axes.get("dt", [])):
+        check_step(float(value), excitation, f"sweep.dt[{i}]")
+    return check_step(config["dt"], excitation, "dt") if "dt" in config else None
+
+
+def _chunk_size(chunk, axes) -> int:
+    if chunk == "auto":
+        return -(-int(np.prod([len(v) for v in axes.values()])) // AUTO_CHUNKS)
+    if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
+        raise StudyError(f"chunk_size: expected an integer >= 1 or 'auto', got {chunk!r}")
+    return chunk
+
+
+def _point(point, key, axes) -> dict:
+    """A point of the sweep ({axis: value}), each value checked."""
+    check_keys(point, key, (), tuple(axes))
+    out = {}
+    for name, v in point.items():
+        if name == "prototype":
+            if v not in axes["prototype"]:
+                raise StudyError(f"{key}.prototype: {v!r} is not on the sweep axis {list(axes['prototype'])}")
+            out[name] = v
+        else:
+            out[name] = number(v, f"{key}.{name}")
+    return out
+
+
+def _marks(marks, axes) -> dict:
+    if not isinstance(marks, dict):
+        raise StudyError(f"marks: expected a mapping of labels to sweep points, got {marks!r}")
+    return {str(label): _point(p, f"marks.{label}", axes) for label, p in marks.items()}
+
+
+def _histories(histories, axes, dt) -> list:
+    if not isinstance(histories, list):
+        raise StudyError(f"histories: expected a list of sweep points, got {histories!r}")
+    points = [_point(p, f"histories[{i}]", axes) for i, p in enumerate(histories)]
+    for i, point in enumerate(points):
+        if dt is None and "dt" not in point:
+            raise StudyError(f"histories[{i}]: no dt: give it in the point or as the study's dt")
+    return points
+
+
+def _check_grid(grid):
+    """Every sweep point's geometry is valid; the first bad one is named."""
+    try:
+        grid.geometry(np.arange(grid.n_cases))
+    except ValueError:
+        for i in range(grid.n_cases):
+            try:
+                grid.geometry(np.array([i]))
+            except ValueError as err:
+                where = ", ".join(f"{k}={v}" for k, v in grid.point(i).items())
+                raise StudyError(f"sweep point {where}: {str(err).split(' (at batch index')[0]}") from None
