@@ -1,4 +1,5 @@
-"""Command line: ``dccss run CASE.yaml -o OUT.nc`` (also ``python -m dccss run ...``).
+"""Command line: ``dccss run CASE.yaml -o OUT.nc`` and ``dccss animate RESULT.nc -o OUT.gif|html|mp4``
+(also ``python -m dccss ...``).
 
 Exit codes: 0 written (also a history marked failed with ``on_failure: mark``), 2 bad input,
 3 solver failure, 4 the pad reached a ring with ``capacity: error``. Warnings (an implausible
@@ -15,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from . import animation
 from ._version import __version__
 from .case import CaseError, load_case
 from .files import write_netcdf
@@ -78,7 +80,10 @@ def main(argv=None) -> int:
     run.add_argument("case", help="YAML case file")
     run.add_argument("-o", "--output", required=True, help="netCDF file to write")
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success (warnings still)")
+    animation.add_parser(sub)
     args = parser.parse_args(argv)
+    if hasattr(args, "handler"):
+        return args.handler(args)
     warnings.formatwarning = _warn_line
     start = time.perf_counter()
     progress = _Progress(sys.stderr) if sys.stderr.isatty() and not args.quiet else None

@@ -45,7 +45,31 @@ def snakemake(cwd, *args, profile="profiles/default"):
 
 @pytest.fixture(scope="session")
 def reproduction(tmp_path_factory):
+    """The paper's reproduction, run once per session in a copy of the project."""
     work = copy_project(tmp_path_factory.mktemp("reproduction"))
     run = snakemake(work)
     assert run.returncode == 0, run.stderr[-3000:]
     return work
+
+
+@pytest.fixture(scope="session")
+def shipped_study(tmp_path_factory):
+    """``shipped_study(name)``: the folder of a run of config/studies/<name>.yaml (once per session)."""
+    runs = {}
+
+    def run(name):
+        if name not in runs:
+            work = copy_project(tmp_path_factory.mktemp(name))
+            result = snakemake(work, "--configfile", f"config/studies/{name}.yaml")
+            assert result.returncode == 0, result.stderr[-3000:]
+            runs[name] = work
+        return runs[name]
+
+    return run
+
+
+def pytest_collection_modifyitems(items):
+    """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop)."""
+    for item in items:
+        if {"reproduction", "shipped_study"} & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)

@@ -1,5 +1,6 @@
 """A reproduction killed with SIGKILL in the middle and started again completes, with outputs
-byte-identical to an uninterrupted run and no temporary file left behind."""
+byte-identical to an uninterrupted run and no temporary file left behind (this is also the check
+that two runs of the reproduction give byte-identical files)."""
 
 import hashlib
 import os

@@ -109,10 +109,8 @@ def test_invalid_study_names_key(changes, message, tmp_path):
 
 # --- the workflow -------------------------------------------------------------------------------
 @pytest.mark.parametrize("name", ["pad_shape", "ground_motion"])
-def test_shipped_study_runs(name, tmp_path):
-    work = copy_project(tmp_path)
-    run = snakemake(work, "--configfile", f"config/studies/{name}.yaml")
-    assert run.returncode == 0, run.stderr[-3000:]
+def test_shipped_study_runs(name, shipped_study):
+    work = shipped_study(name)
     ds = xr.open_dataset(work / f"results/studies/{name}/{name}.nc")
     for var in ("theta2_max_abs", "sticking_rotation_max", "rise_max", "rise_end", "theta2_end", "I_A_max",
                 "capacity_exceeded", "newton_iterations_max", "failed"):
@@ -129,6 +127,7 @@ def test_shipped_study_runs(name, tmp_path):
         assert (ds["theta2_max_abs"].diff("scale") > 0).all()  # a stronger record turns the pad more
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("change, message", [
     ({"sweep": {"h2": []}}, "sweep.h2"),
     ({"dt": -0.01}, "dt"),
@@ -151,6 +150,7 @@ def digest(root: Path):
     return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(root.rglob("*.nc"))}
 
 
+@pytest.mark.slow
 def test_cluster_generic_profile_matches_local_run(tmp_path):
     """Every job through a scheduler-style submit script: same files as a local run."""
     results = {}

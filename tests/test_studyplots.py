@@ -344,6 +344,7 @@ KINDS = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", sorted(KINDS))
 def test_files_are_written_and_reproducible(kind, tmp_path):
     for k in range(2):
