@@ -601,3 +601,83 @@ def _summary_axes(ax, ds, name, label, unit, models):
     ax.set_title(label + (f"\n(not defined for {', '.join(missing)})" if missing else ""), fontsize=10)
     ax.margins(y=0.18)
     ax.grid(True, color="0.9", lw=0.6)
+
+
+# --- convergence in the step size -------------------------------------------------------------------
+#: the steps used to fit the order: the smallest ones (where the asymptotic order shows)
+FIT_POINTS = 4
+
+
+def convergence_table(ds, points) -> list[dict]:
+    """What a Δt study measures, per device (the point's other coordinates) and step size: the
+    largest sticking rotation (deg, from the summaries ``ds``) and the largest differences between
+    stick-slip (end of step) and compliant sliding of θ² (deg) and of the rise of RB3 (m), from the
+    histories.
+
+    ``points`` is a list of ({axis: value}, {model: history dataset}), one per history point with a
+    ``dt``; a failed or cut history contributes up to its last step in common with the other model.
+    """
+    rows = []
+    for point, runs in points:
+        if "dt" not in point or not {"compliant", "stick_slip"} <= set(runs):
+            continue
+        comp, stick = runs["compliant"], runs["stick_slip"]
+        n = min(comp.sizes["t"], stick.sizes["t"])
+        others = {k: v for k, v in point.items() if k != "dt"}
+        turn = ds["sticking_rotation_max"].sel(model="stick_slip", dt=point["dt"],
+                                               **{k: v for k, v in others.items() if k in ds.dims})
+        rows.append({"group": ", ".join(f"{k} = {v}" for k, v in others.items()) or "the case",
+                     "dt": float(point["dt"]), "sticking_rotation_max": float(turn),
+                     "theta2_difference_max": float(np.abs(stick["theta2"][:n] - comp["theta2"][:n]).max()),
+                     "rise_difference_max": float(np.abs(stick["rise"][:n] - comp["rise"][:n]).max()),
+                     "failed": bool(stick.attrs.get("failed", 0) or comp.attrs.get("failed", 0))})
+    return sorted(rows, key=lambda r: (r["group"], r["dt"]))
+
+
+def fitted_order(dt, values, n=FIT_POINTS) -> float:
+    """Slope of log(values) against log(dt) over the ``n`` smallest step sizes (least squares)."""
+    dt, values = np.asarray(dt, float), np.asarray(values, float)
+    keep = np.argsort(dt)[:n]
+    keep = keep[np.isfinite(values[keep]) & (values[keep] > 0)]
+    if keep.size < 2:
+        return float("nan")
+    return float(np.polyfit(np.log(dt[keep]), np.log(values[keep]), 1)[0])
+
+
+CONVERGENCE_PANELS = [
+    ("sticking_rotation_max", "largest sticking rotation", 1.0, "°"),
+    ("theta2_difference_max", "max |θ² stick-slip − θ² compliant|", 1.0, "°"),
+    ("rise_difference_max", "max |rise stick-slip − rise compliant|", 1e3, "mm"),
+]
+
+
+def convergence(rows, caption: str) -> Figure:
+    """Log-log panels of ``convergence_table`` rows against Δt, one line per device, with the order
+    fitted over the ``FIT_POINTS`` smallest steps in the legend; failed runs drawn hollow."""
+    fig, axs = _figure((13, 4.6), 1, len(CONVERGENCE_PANELS))
+    groups = list(dict.fromkeys(r["group"] for r in rows))
+    for ax, (name, label, factor, unit) in zip(axs[0], CONVERGENCE_PANELS):
+        for k, group in enumerate(groups):
+            mine = [r for r in rows if r["group"] == group]
+            dt = np.array([r["dt"] for r in mine])
+            y = factor * np.array([r[name] for r in mine])
+            order = fitted_order(dt, y)
+            colour = f"C{k}"
+            ax.loglog(dt, y, "-", color=colour, marker=GROUP_MARKERS[k % len(GROUP_MARKERS)], ms=5,
+                      label=f"{group}: order {order:.2f}")
+            failed = np.array([r["failed"] for r in mine])
+            if failed.any():
+                ax.loglog(dt[failed], y[failed], "o", ms=11, mfc="none", mec=FAILED_COLOUR, mew=1.2,
+                          label="solver failed (up to the failure)" if k == 0 else None)
+        ax.set_xlabel("Δt (s)")
+        ax.set_ylabel(f"{label} ({unit})")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8, title=f"order fitted on the {FIT_POINTS} smallest Δt", title_fontsize=8)
+    fig.suptitle("Stick-slip against Δt: the sticking rotation and the distance to compliant sliding", fontsize=12)
+    fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
+             fontsize=9, style="italic", color="0.25")
+    fig.draw_without_rendering()
+    fig.set_layout_engine(None)
+    for ax in fig.axes:  # rounded: the same PDF coordinates in every run
+        ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
+    return fig

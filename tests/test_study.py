@@ -269,3 +269,11 @@ def test_a_failing_job_leaves_the_full_message_in_its_log(tmp_path):
     assert len(failed) == 1, "the first failing job stops the workflow"
     assert "sweep point {'alpha21': " in failed[0] and "'h2': 0.1} (stick_slip)" in failed[0]
     assert "did not converge in sticking" in failed[0] and "batch index (0,)" in failed[0]
+
+
+def test_histories_all_runs_every_point_in_full():
+    study = Study.from_config(tiny(histories="all", sweep={"alpha21": [8.0, 10.0], "dt": [0.01, 0.005]}))
+    assert study.histories == [study.grid.point(i) for i in range(4)]
+    assert [history_mapping(study, i, "compliant")["dt"] for i in range(4)] == [0.01, 0.005, 0.01, 0.005]
+    with pytest.raises(CaseError, match="histories: expected a list of sweep points or 'all'"):
+        Study.from_config(tiny(histories="some"))

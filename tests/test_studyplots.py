@@ -352,3 +352,34 @@ def test_files_are_written_and_reproducible(kind, tmp_path):
     for ext in ("png", "pdf"):
         first, second = ((tmp_path / f"{kind}{k}.{ext}").read_bytes() for k in range(2))
         assert len(first) > 10_000 and first == second
+
+
+# --- convergence in the step size ------------------------------------------------------------------
+def test_fitted_order_recovers_a_power_law_on_the_smallest_steps():
+    dt = np.array([0.02, 0.01, 0.005, 0.002, 0.001, 0.0005])
+    values = 3.0 * dt**1.5 + np.where(dt > 0.006, 1.0, 0.0)  # a power law on the 4 smallest, spoilt above
+    assert studyplots.fitted_order(dt, values) == pytest.approx(1.5, abs=1e-12)
+    assert studyplots.fitted_order(dt, values, n=6) != pytest.approx(1.5, abs=0.05)
+    assert np.isnan(studyplots.fitted_order(dt[:1], values[:1]))
+
+
+def _history(theta2, rise, dt, failed=0):
+    t = dt * np.arange(len(theta2))
+    return xr.Dataset({"theta2": ("t", np.asarray(theta2, float)), "rise": ("t", np.asarray(rise, float))},
+                      coords={"t": t}, attrs={"dt_s": dt, "failed": failed})
+
+
+def test_convergence_table_measures_the_distance_between_the_models():
+    summaries = xr.Dataset({"sticking_rotation_max": (("model", "prototype", "dt"), [[[np.nan] * 2] * 2,
+                                                                                     [[2.0, 1.0], [4.0, 3.0]]])},
+                           coords={"model": ["compliant", "stick_slip"], "prototype": ["DFP1", "DFP2"],
+                                   "dt": [0.01, 0.005]})
+    points = [({"prototype": "DFP2", "dt": 0.005},
+               {"compliant": _history([0, 1, 2, 3], [0, 0.1, 0.2, 0.3], 0.005),
+                "stick_slip": _history([0, 1.5, 1.0], [0, 0.1, 0.25], 0.005, failed=1)})]
+    (row,) = studyplots.convergence_table(summaries, points)
+    assert row == {"group": "prototype = DFP2", "dt": 0.005, "sticking_rotation_max": 3.0,
+                   "theta2_difference_max": pytest.approx(1.0), "rise_difference_max": pytest.approx(0.05),
+                   "failed": True}  # compared up to the failed run's last step
+    fig = studyplots.convergence([row, {**row, "dt": 0.01, "failed": False}], "caption")
+    assert all(ax.get_xscale() == "log" and ax.get_yscale() == "log" for ax in fig.axes)

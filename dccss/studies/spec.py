@@ -135,8 +135,11 @@ class Study:
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=ON_FAILURE[policy]),
                     base=base)
         study.marks = _marks(config.get("marks", {}), axes)
-        study.histories = _histories(config.get("histories", []), axes, dt)
         _check_grid(study.grid)
+        histories = config.get("histories", [])
+        if histories == "all":
+            histories = [study.grid.point(i) for i in range(study.grid.n_cases)]
+        study.histories = _histories(histories, axes, dt)
         return study
 
 
@@ -218,7 +221,7 @@ def _marks(marks, axes) -> dict:
 
 def _histories(histories, axes, dt) -> list:
     if not isinstance(histories, list):
-        raise StudyError(f"histories: expected a list of sweep points, got {histories!r}")
+        raise StudyError(f"histories: expected a list of sweep points or 'all', got {histories!r}")
     points = [_point(p, f"histories[{i}]", axes) for i, p in enumerate(histories)]
     for i, point in enumerate(points):
         if dt is None and "dt" not in point:

@@ -63,11 +63,12 @@ rule study_plots:
             for f in study_plots()
             if f.endswith(".png")
         ],
-        [f for f in study_plots() if f.endswith(".pdf")],
+        [f for f in study_plots() if not f.endswith(".png")],
     params:
         caption=f"study {STUDY.name}: {STUDY.description}".rstrip(": "),
         marks=STUDY.marks,
         labels=history_labels(),
+        points=STUDY.histories,
     log:
         f"logs/studies/{STUDY.name}/plots.log",
     conda:

@@ -42,9 +42,16 @@ def history_labels():
             for point in STUDY.histories]
 
 
+def convergence_plot():
+    """A Δt study (a dt axis with both models run in full at its points) also gets its convergence plot."""
+    return "dt" in STUDY.axes and {"compliant", "stick_slip"} <= set(STUDY.models) and any(
+        "dt" in point for point in STUDY.histories)
+
+
 def study_plots():
-    names = ["maps"] + (["histories"] if STUDY.histories else [])
-    return [f"figures/studies/{STUDY.name}/{name}.{ext}" for name in names for ext in ("png", "pdf")]
+    names = ["maps"] + (["histories"] if STUDY.histories else []) + (["convergence"] if convergence_plot() else [])
+    files = [f"figures/studies/{STUDY.name}/{name}.{ext}" for name in names for ext in ("png", "pdf")]
+    return files + ([f"figures/studies/{STUDY.name}/convergence.csv"] if convergence_plot() else [])
 
 
 def all_targets():

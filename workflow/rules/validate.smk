@@ -1,3 +1,13 @@
+# The paper's numbers are checked when the workflow is parsed: an entry naming an unknown kind,
+# prototype, corner, model, dt or variant stops it before any job, naming the entry.
+from dccss import validation
+
+try:
+    validation.load_values("config/paper_values.yaml", validation.catalogue_from_config(config))
+except ValueError as err:
+    raise WorkflowError(f"config/paper_values.yaml:\n{err}") from None
+
+
 rule validate:
     input:
         unpack(validation_inputs),

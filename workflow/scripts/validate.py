@@ -8,16 +8,14 @@ from dccss.results import load
 
 keys = snakemake.params.results
 with logged(snakemake.log[0]):
-    cases = zip(keys["cases"], snakemake.input.cases)
-    sweeps = zip(keys["breakaway"], snakemake.input.breakaway)
+    catalogue = validation.catalogue_from_config(snakemake.config)
+    values = validation.load_values(snakemake.input["values"], catalogue)
     results = validation.Results(
-        cases={(v, p, m, float(dt)): load(f) for (v, p, m, dt), f in cases},
-        breakaway={(v, p): load(f) for (v, p), f in sweeps},
+        cases={(v, p, m, float(dt)): load(f) for (v, p, m, dt), f in zip(keys["cases"], snakemake.input.cases)},
+        breakaway={(v, p): load(f) for (v, p), f in zip(keys["breakaway"], snakemake.input.breakaway)},
     )
-    rows = validation.evaluate(validation.load_values(snakemake.input["values"]), results,
-                               snakemake.params.case_variants, snakemake.params.breakaway_variants)
+    variants = (catalogue.case_variants, catalogue.breakaway_variants)
+    rows = validation.evaluate(values, results, *variants)
     write_text(validation.to_json(rows), snakemake.output.json)
-    write_text(validation.to_csv(rows, snakemake.params.case_variants, snakemake.params.breakaway_variants),
-               snakemake.output.csv)
-    write_text(validation.markdown(rows, snakemake.params.case_variants, snakemake.params.breakaway_variants),
-               snakemake.output.md)
+    write_text(validation.to_csv(rows, *variants), snakemake.output.csv)
+    write_text(validation.markdown(rows, *variants), snakemake.output.md)
