@@ -10,6 +10,9 @@ if not config:  # no --configfile: the paper study
     configfile: "config/config.yaml"
 
 
+include: "workflow/rules/library.smk"
+
+
 if "study" in config:
 
     include: "workflow/rules/study_common.smk"  # checks every key and sweep point, with clear messages

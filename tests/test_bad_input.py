@@ -138,6 +138,7 @@ WORKFLOW_ROWS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mutate, message", [r[1:] for r in WORKFLOW_ROWS], ids=[r[0] for r in WORKFLOW_ROWS])
 def test_workflow_config_errors(tmp_path, mutate, message):
     work = copy_project(tmp_path)

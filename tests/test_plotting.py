@@ -1,17 +1,24 @@
-"""Paper figures from small real datasets: panels, labels with units, captions, reproducible files."""
+"""Paper figures from small real datasets: panels, labels with units, captions, reproducible files.
+
+The figures and their panels are those of ``config/config.yaml`` (the paper study)."""
 
 import re
+from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+import yaml
 
+from dccss.case import geometry_from
 from dccss.excitation import Sine
-from dccss.plotting import FIGURES, render, save
-from dccss.prototypes import DFP1, DFP2
+from dccss.plotting import KINDS, Panel, figure_spec, figure_specs, render, save
 from dccss.simulation import breakaway, simulate
 
-PROTOTYPES = {"DFP1": DFP1, "DFP2": DFP2}
+CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config/config.yaml").read_text())
+SPECS = figure_specs(CONFIG["figures"])
+PROTOTYPES = {name: geometry_from(params) for name, params in CONFIG["prototypes"].items()}
 CAPTION = "case set: test (X_g,max = 27 cm, θ²(t₀) = 0)"
 UNIT = re.compile(r"\((µm|mm|cm|cm/s|m|°|s)\)$")
 # panel letters, number of axes (twins included), number of insets (None: depends on the data)
@@ -25,50 +32,70 @@ REQUIRED_UNITS = {"fig07": ["(°)", "(m)"], "fig08": ["(cm)"], "fig10": ["(µm)"
 
 @pytest.fixture(scope="module")
 def datasets(tmp_path_factory):
-    """Every dataset the figures need, from short runs, read back from netCDF like the workflow does."""
+    """{(prototype, model, dt) or prototype: dataset} for every panel of the paper's figures, from
+    short runs, read back from netCDF like the workflow does (a sweep holds every ground step)."""
     folder = tmp_path_factory.mktemp("data")
-    keys = {key for spec in FIGURES.values() for key in spec.keys}
+    panels = [(spec.data, panel) for spec in SPECS.values() for panel in spec.panels]
+    steps = {}
+    for data, p in panels:
+        if data == "breakaway":
+            steps.setdefault(p.prototype, set()).add(p.dXg)
     theta = np.radians([-10.0, -8.8, -6.0, -3.0, 0.0])
     out = {}
-    for key in sorted(keys, key=str):
-        if len(key) == 3:
-            proto, model, dt = key
-            ds = simulate(PROTOTYPES[proto], Sine(0.27, 30.0, 0.2), model=model, dt=dt)
+    for data, p in panels:
+        key = (p.prototype, p.model, p.dt) if data == "cases" else p.prototype
+        if key in out:
+            continue
+        if data == "cases":
+            ds = simulate(PROTOTYPES[p.prototype], Sine(0.27, 30.0, 0.2), model=p.model, dt=p.dt)
         else:
-            proto, dXg = key
-            ds = breakaway(PROTOTYPES[proto], theta, dXg)
-        path = folder / f"{'_'.join(map(str, key))}.nc"
+            ds = breakaway(PROTOTYPES[p.prototype], theta, sorted(steps[p.prototype]))
+        path = folder / f"{'_'.join(map(str, np.atleast_1d(key)))}.nc"
         ds.to_netcdf(path)
         out[key] = xr.load_dataset(path)
     return out
 
 
+def panel_datasets(spec, datasets):
+    """One dataset per panel of ``spec``, in order."""
+    if spec.data == "breakaway":
+        return [datasets[p.prototype] for p in spec.panels]
+    return [datasets[(p.prototype, p.model, p.dt)] for p in spec.panels]
+
+
+def letters(fig):
+    titles = [ax.get_title(loc="left") for ax in fig.axes]
+    return "".join(sorted(m[1] for t in titles if (m := re.match(r"\((\w)\) ", t))))
+
+
 def test_registry():
-    assert sorted(FIGURES) == sorted(EXPECTED)
-    for spec in FIGURES.values():
-        assert spec.kind in ("breakaway", "cases")
-        assert all(len(key) == (2 if spec.kind == "breakaway" else 3) for key in spec.keys)
-        assert spec.title and "\n" not in spec.title
+    assert sorted(SPECS) == sorted(EXPECTED)
+    for kind in KINDS.values():
+        assert kind.data in ("breakaway", "cases") and 1 <= kind.panels[0] <= kind.panels[1]
+        assert kind.draw.__doc__
+    for spec in SPECS.values():
+        assert spec.kind in KINDS and spec.title and "\n" not in spec.title
+        assert KINDS[spec.kind].panels[0] <= len(spec.panels) <= KINDS[spec.kind].panels[1]
 
 
-def test_render_names_missing_datasets():
-    with pytest.raises(KeyError, match="fig11 needs"):
-        render("fig11", {}, CAPTION)
+def test_render_needs_one_dataset_per_panel():
+    with pytest.raises(ValueError, match=r"fig11 draws 1 panel\(s\), got 0 dataset"):
+        render(SPECS["fig11"], [], CAPTION)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fig_id", sorted(EXPECTED))
 def test_figure(fig_id, datasets, tmp_path):
-    fig = render(fig_id, datasets, CAPTION)
-    letters, n_axes, n_insets = EXPECTED[fig_id]
-    titles = [ax.get_title(loc="left") for ax in fig.axes]
-    assert sorted(m[1] for t in titles if (m := re.match(r"\((\w)\) ", t))) == list(letters)
+    fig = render(SPECS[fig_id], panel_datasets(SPECS[fig_id], datasets), CAPTION)
+    expected_letters, n_axes, n_insets = EXPECTED[fig_id]
+    assert letters(fig) == expected_letters
     assert len(fig.axes) == n_axes
     assert n_insets is None or sum(len(ax.child_axes) for ax in fig.axes) == n_insets
     labels = [label for ax in fig.axes for label in (ax.get_xlabel(), ax.get_ylabel()) if label]
     assert labels and all(UNIT.search(label) for label in labels), labels
     for unit in REQUIRED_UNITS.get(fig_id, ["(s)"]):
         assert any(label.endswith(unit) for label in labels), (unit, labels)
-    assert fig._suptitle.get_text().startswith(f"Figure {int(fig_id[3:])}. ")
+    assert fig._suptitle.get_text() == f"Figure {int(fig_id[3:])}. {SPECS[fig_id].title}"
     assert CAPTION in [text.get_text() for text in fig.texts]
     assert 11 <= fig.get_figwidth() <= 14
 
@@ -82,9 +109,44 @@ def test_figure(fig_id, datasets, tmp_path):
     assert sorted(p.name for p in first.iterdir()) == [f"{fig_id}.pdf", f"{fig_id}.png"]  # no temporary left
 
 
+# (figure whose panels are reused, panel indices, letters, axes: a grid cell without a panel is removed)
+OTHER_LAYOUTS = [
+    ("fig07", (0, 1, 2), "abc", 6),  # 2 x 2 grid filled by columns, the last cell empty
+    ("fig17", (0, 1, 2), "abc", 3),  # 2 x 2 grid filled by rows, the last cell empty
+    ("fig09", (3,), "a", 2),  # one column
+    ("fig10", (0, 1, 0), "abc", 6),  # three columns
+    ("fig20", (1,), "a", 1),
+]
+
+
+@pytest.mark.parametrize("fig_id, picks, expected_letters, n_axes", OTHER_LAYOUTS,
+                         ids=[f"{r[0]}-{len(r[1])}" for r in OTHER_LAYOUTS])
+def test_other_panel_counts(datasets, fig_id, picks, expected_letters, n_axes):
+    """A kind lays out any number of panels within its bounds; the lowest panel of a column has the time axis."""
+    spec = SPECS[fig_id]
+    spec = replace(spec, id="fig99", panels=tuple(spec.panels[i] for i in picks))
+    fig = render(spec, panel_datasets(spec, datasets), CAPTION)
+    assert letters(fig) == expected_letters and len(fig.axes) == n_axes
+    assert fig._suptitle.get_text().startswith("Figure 99. ")
+    if spec.kind == "interpenetration":
+        lowest = [ax for ax in fig.axes if ax.get_xlabel() == "t (s)"]
+        assert len(lowest) == 2 and all(ax.xaxis.get_tick_params()["labelbottom"] for ax in lowest)
+
+
+def test_a_panel_naming_its_variant_says_so(datasets):
+    """A panel with its own case set or normals keeps it in every version of the figure: its title names it."""
+    entry = {"kind": "sticking", "title": "one line",
+             "panels": [{"prototype": "DFP1", "model": "stick_slip", "dt": 0.01, "t": 0.1, "case_set": "as_printed"}]}
+    spec = figure_spec("fig18", entry)
+    assert spec.panels[0] == Panel("DFP1", "stick_slip", 0.01, t=0.1, variant="as_printed")
+    fig = render(spec, [datasets[("DFP1", "stick_slip", 0.01)]], CAPTION)
+    assert fig.axes[0].get_title(loc="left") == "(a) pad rotation, DFP1, Δt = 0.01 s, as_printed"
+
+
 def test_rendering_is_reproducible(datasets, tmp_path):
     """Two independent renders give the same bytes (no timestamps, no state carried over)."""
     for name in ("a", "b"):
-        save(render("fig20", datasets, CAPTION), tmp_path / f"{name}.png", tmp_path / f"{name}.pdf")
+        save(render(SPECS["fig20"], panel_datasets(SPECS["fig20"], datasets), CAPTION),
+             tmp_path / f"{name}.png", tmp_path / f"{name}.pdf")
     for suffix in (".png", ".pdf"):
         assert (tmp_path / f"a{suffix}").read_bytes() == (tmp_path / f"b{suffix}").read_bytes()

@@ -265,7 +265,8 @@ def test_a_failing_job_leaves_the_full_message_in_its_log(tmp_path):
     run = snakemake(work, "--configfile", "failing.yaml")
     assert run.returncode != 0
     assert "did not converge in sticking" in run.stderr
-    failed = [p.read_text() for p in (work / "logs/studies/tiny").glob("stick_slip_*.log") if "Traceback" in p.read_text()]
+    logs = [p.read_text() for p in (work / "logs/studies/tiny").glob("stick_slip_*.log")]
+    failed = [log for log in logs if "Traceback" in log]
     assert len(failed) == 1, "the first failing job stops the workflow"
     assert "sweep point {'alpha21': " in failed[0] and "'h2': 0.1} (stick_slip)" in failed[0]
     assert "did not converge in sticking" in failed[0] and "batch index (0,)" in failed[0]

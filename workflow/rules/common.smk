@@ -1,35 +1,10 @@
 # Paths and parameters derived from the configuration (no computation here).
+import re
+
 from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError, geometry_from
-from dccss.plotting import FIGURES
-
-
-def check_config():
-    """What the schema cannot say: names that refer to each other, and each device's geometry."""
-    for name, params in config["prototypes"].items():
-        try:
-            geometry_from(params, f"prototypes.{name}")
-        except CaseError as err:
-            raise WorkflowError(f"config: {err}") from None
-    for case_set, spec in config["case_sets"].items():
-        for proto in spec["cases"]:
-            if proto not in config["prototypes"]:
-                raise WorkflowError(f"config: case_sets.{case_set}.cases: unknown prototype {proto!r}; "
-                                    f"defined: {sorted(config['prototypes'])}")
-    figures = config.get("figures", {})
-    if "case_set" in figures and figures["case_set"] not in config["case_sets"]:
-        raise WorkflowError(f"config: figures.case_set: unknown case set {figures['case_set']!r}; "
-                            f"defined: {sorted(config['case_sets'])}")
-    normals = (config.get("breakaway") or {}).get("normals", [])
-    if "breakaway_normals" in figures and figures["breakaway_normals"] not in normals:
-        raise WorkflowError(f"config: figures.breakaway_normals: {figures['breakaway_normals']!r} is not among "
-                            f"breakaway.normals {normals}")
-    if config["duration"] < max(config["dt"]):
-        raise WorkflowError(f"config: dt: {max(config['dt'])} s is larger than the duration {config['duration']} s")
-
-
-check_config()
+from dccss.plotting import Runs, SpecError, figure_specs
 
 
 def dt_label(dt):
@@ -42,6 +17,81 @@ def case_path(case_set, proto, model, dt):
 
 def breakaway_path(proto, normals):
     return f"results/breakaway/{proto}_{normals}.nc"
+
+
+def check_config():
+    """What the schema cannot say: names that refer to each other, each device's geometry, and that
+    every figure panel asks for a dataset the study runs. Returns the figure specs.
+
+    Every mistake is reported before any job runs, one "config: <key>: <problem>" line each; a
+    figure asking for a time step, model, prototype, ground step or variant that is not run is
+    such a mistake (figures are neither skipped nor adapted).
+    """
+    errors = [*prototype_errors(), *case_set_errors(), *dt_errors(), *breakaway_errors()]
+    specs = {}
+    try:
+        specs = figure_specs(config.get("figures") or {}, runs())
+    except SpecError as err:
+        errors += err.errors
+    if errors:
+        raise WorkflowError("\n".join(f"config: {e}" for e in errors))
+    return specs
+
+
+def prototype_errors():
+    for name, params in config["prototypes"].items():
+        try:
+            geometry_from(params, f"prototypes.{name}")
+        except CaseError as err:
+            yield str(err)
+
+
+def case_set_errors():
+    for case_set, spec in config["case_sets"].items():
+        for proto in spec["cases"]:
+            if proto not in config["prototypes"]:
+                yield (f"case_sets.{case_set}.cases: unknown prototype {proto!r}; "
+                       f"defined: {sorted(config['prototypes'])}")
+
+
+def dt_errors():
+    if config["duration"] < max(config["dt"]):
+        yield f"dt: {max(config['dt'])} s is larger than the duration {config['duration']} s"
+    labels = [dt_label(dt) for dt in config["dt"]]
+    for label in sorted({x for x in labels if labels.count(x) > 1}):
+        yield f"dt: {[dt for dt in config['dt'] if dt_label(dt) == label]} share the file name label dt{label}"
+
+
+def breakaway_errors():
+    grid = (config.get("breakaway") or {}).get("theta2_0")
+    if grid and not breakaway_theta2_0(grid):
+        yield (f"breakaway.theta2_0: the grid from start {grid['start']} to stop {grid['stop']} by step "
+               f"{grid['step']} is empty (stop < start)")
+
+
+def runs():
+    """The datasets the workflow computes, which the figures may draw."""
+    spec = config.get("breakaway") or {}
+    grid = breakaway_theta2_0(spec["theta2_0"]) if spec else []
+    return Runs(prototypes=list(config["prototypes"]),
+                case_sets={name: list(s["cases"]) for name, s in config["case_sets"].items()},
+                models=config["models"], dt=config["dt"], duration=config["duration"],
+                dXg=spec.get("dXg", []), normals=spec.get("normals", []),
+                theta2_0=(min(grid), max(grid)) if grid else None)
+
+
+def breakaway_theta2_0(grid):
+    """The theta2(t0) values (deg) of the breakaway grid {start, stop, step}; empty if stop < start."""
+    n = int(round((grid["stop"] - grid["start"]) / grid["step"]))
+    return [round(grid["start"] + k * grid["step"], 10) for k in range(n + 1)]
+
+
+def one_of(names):
+    """A wildcard constraint matching exactly these names."""
+    return "|".join(re.escape(name) for name in names)
+
+
+FIGURES = check_config()  # {figure: dccss.plotting.FigureSpec}
 
 
 def all_cases():
@@ -68,7 +118,10 @@ def case_mappings(wildcards):
 
 def case_mapping(wildcards, dt):
     """The dccss case mapping of one simulation."""
-    spec = config["case_sets"][wildcards.case_set]["cases"][wildcards.proto]
+    cases = config["case_sets"][wildcards.case_set]["cases"]
+    if wildcards.proto not in cases:
+        raise WorkflowError(f"config: case_sets.{wildcards.case_set}.cases: no prototype {wildcards.proto!r}")
+    spec = cases[wildcards.proto]
     case = {
         "id": f"{wildcards.case_set}/{wildcards.proto}_{wildcards.model}_dt{dt_label(dt)}",
         "prototype": config["prototypes"][wildcards.proto],
@@ -86,11 +139,9 @@ def case_mapping(wildcards, dt):
 
 def breakaway_params(wildcards):
     spec = config["breakaway"]
-    grid = spec["theta2_0"]
-    n = int(round((grid["stop"] - grid["start"]) / grid["step"]))
     return {
         "prototype": config["prototypes"][wildcards.proto],
-        "theta2_0": [round(grid["start"] + k * grid["step"], 10) for k in range(n + 1)],
+        "theta2_0": breakaway_theta2_0(spec["theta2_0"]),
         "dXg": spec["dXg"],
         "normals": wildcards.normals,
         "newton": config.get("newton", {}),
@@ -104,15 +155,18 @@ def all_targets():
 
 
 # --- figures ---
-def figure_group(fig):
-    """Figures are drawn in groups that read the same datasets: breakaway, compliant, stick_slip."""
-    spec = FIGURES[fig]
-    return "breakaway" if spec.kind == "breakaway" else spec.keys[0][1]
+
+def figure_group(spec):
+    """Figures are drawn in groups that read the same datasets: breakaway, or the models drawn
+    (compliant, stick_slip, compliant_stick_slip)."""
+    if spec.data == "breakaway":
+        return "breakaway"
+    return "_".join(sorted({panel.model for panel in spec.panels}))
 
 
 FIGURE_GROUPS = {}
-for _fig in FIGURES:
-    FIGURE_GROUPS.setdefault(figure_group(_fig), []).append(_fig)
+for _fig, _spec in FIGURES.items():
+    FIGURE_GROUPS.setdefault(figure_group(_spec), []).append(_fig)
 
 
 def group_kind(group):
@@ -133,16 +187,22 @@ def group_variants(group):
     return [""] + [f"_{o}" for o in others if o != main]
 
 
+def panel_path(panel, kind, variant):
+    """The result file a panel draws; a panel naming its own variant keeps it in every version."""
+    v = panel.variant or variant
+    if kind == "cases":
+        return case_path(v, panel.prototype, panel.model, panel.dt)
+    return breakaway_path(panel.prototype, v)
+
+
 def figure_datasets(group, variant):
-    """{figure: [(key, file)]} of the datasets each figure of a group draws (keys as in dccss.plotting)."""
-    v = group_variant(group, variant)
-    path = (lambda key: case_path(v, *key)) if group_kind(group) == "cases" else (
-        lambda key: breakaway_path(key[0], v))
-    return {fig: [(list(key), path(key)) for key in FIGURES[fig].keys] for fig in FIGURE_GROUPS[group]}
+    """{figure: [file of each panel]} of the figures of a group."""
+    v, kind = group_variant(group, variant), group_kind(group)
+    return {fig: [panel_path(panel, kind, v) for panel in FIGURES[fig].panels] for fig in FIGURE_GROUPS[group]}
 
 
 def figure_inputs(group, variant):
-    return sorted({p for pairs in figure_datasets(group, variant).values() for _, p in pairs})
+    return sorted({p for paths in figure_datasets(group, variant).values() for p in paths})
 
 
 def figure_caption(group, variant):
@@ -153,8 +213,6 @@ def figure_caption(group, variant):
 
 
 def figure_targets():
-    if "figures" not in config:
-        return []
     return [
         f"figures/{fig}{variant}.{ext}"
         for group, figs in FIGURE_GROUPS.items()

@@ -15,10 +15,12 @@ for group, figs in FIGURE_GROUPS.items():
             pdf=[f"figures/{fig}{{variant}}.pdf" for fig in figs],
         params:
             datasets=lambda w, group=group: figure_datasets(group, w.variant),
+            figures={fig: config["figures"][fig] for fig in figs},
             titles={fig: FIGURES[fig].title for fig in figs},
             caption=lambda w, group=group: figure_caption(group, w.variant),
+            library=FIGURES_SOURCE,
         wildcard_constraints:
-            variant="(_[A-Za-z0-9_]+)?",
+            variant=one_of(group_variants(group)),
         log:
             f"logs/figures/{group}{{variant}}.log",
         conda:

@@ -1,8 +1,9 @@
+# only the configured names: a result the config does not define has no rule (no KeyError in a job)
 wildcard_constraints:
-    case_set="[A-Za-z][A-Za-z0-9_]*",
-    proto="[A-Za-z][A-Za-z0-9-]*",
-    model="compliant|stick_slip",
-    normals="signed|unsigned",
+    case_set=one_of(config["case_sets"]),
+    proto=one_of(config["prototypes"]),
+    model=one_of(config["models"]),
+    normals=one_of((config.get("breakaway") or {}).get("normals", ["signed", "unsigned"])),
 
 
 # one job per (case set, prototype, model) writes one file per time step: every figure and check
@@ -12,6 +13,7 @@ rule simulate:
         [f"results/cases/{{case_set}}/{{proto}}_{{model}}_dt{dt_label(dt)}.nc" for dt in config["dt"]],
     params:
         cases=case_mappings,
+        library=COMPUTE_SOURCE,
     log:
         "logs/simulate/{case_set}/{proto}_{model}.log",
     conda:
@@ -25,6 +27,7 @@ rule breakaway:
         "results/breakaway/{proto}_{normals}.nc",
     params:
         sweep=breakaway_params,
+        library=COMPUTE_SOURCE,
     log:
         "logs/breakaway/{proto}_{normals}.log",
     conda:

@@ -13,6 +13,7 @@ rule study_chunk:
     params:
         study_dir=str(STUDY_FILE.parent),
         spec=lambda w: sweep_spec(config, [w.model]),
+        library=COMPUTE_SOURCE,
     log:
         "logs/studies/{study}/{model}_{chunk}.log",
     conda:
@@ -29,6 +30,7 @@ rule study_combine:
     params:
         study_dir=str(STUDY_FILE.parent),
         spec=sweep_spec(config),
+        library=COMPUTE_SOURCE,
     log:
         "logs/studies/{study}/combine.log",
     conda:
@@ -45,6 +47,7 @@ rule study_history:
     params:
         study_dir=str(STUDY_FILE.parent),
         case=lambda w: history_mapping(STUDY, int(w.i), w.model),
+        library=COMPUTE_SOURCE,
     log:
         "logs/studies/{study}/history_{model}_{i}.log",
     conda:
@@ -69,6 +72,7 @@ rule study_plots:
         marks=STUDY.marks,
         labels=history_labels(),
         points=STUDY.histories,
+        library=STUDY_PLOTS_SOURCE,
     log:
         f"logs/studies/{STUDY.name}/plots.log",
     conda:

@@ -19,6 +19,7 @@ rule validate:
         results=result_keys(),
         case_variants=list(config["case_sets"]),
         breakaway_variants=(config.get("breakaway") or {}).get("normals", []),
+        library=VALIDATION_SOURCE,
     log:
         "logs/validate.log",
     conda:

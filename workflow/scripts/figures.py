@@ -7,13 +7,8 @@ from dccss.results import load
 
 with logged(snakemake.log[0]):
     files = {f: load(f) for f in snakemake.input}
-    figures = snakemake.params.datasets
-    for (fig, pairs), png, pdf in zip(figures.items(), snakemake.output.png, snakemake.output.pdf):
-        datasets = {}
-        for key, path in pairs:
-            ds = files[path]
-            if "dXg" in ds.dims:  # key (prototype, dXg): one step size of a breakaway sweep
-                ds = ds.sel(dXg=key[1]).assign_attrs(dXg_m=key[1])
-            datasets[tuple(key)] = ds
-        plotting.save(plotting.render(fig, datasets, snakemake.params.caption), png, pdf)
+    paths = snakemake.params.datasets
+    for (fig, entry), png, pdf in zip(snakemake.params.figures.items(), snakemake.output.png, snakemake.output.pdf):
+        spec = plotting.figure_spec(fig, entry)
+        plotting.save(plotting.render(spec, [files[p] for p in paths[fig]], snakemake.params.caption), png, pdf)
         print(f"{fig}: {png}, {pdf}")
