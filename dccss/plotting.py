@@ -102,12 +102,33 @@ def _finish(fig, fig_id, caption, title=None):
     number = re.fullmatch(r"fig([0-9]+)", fig_id)
     heading = f"Figure {int(number[1])}." if number else fig_id
     fig.suptitle(f"{heading} {title}" if title else heading, fontsize=12)
+    caption_line(fig, caption)
+    return freeze(fig)
+
+
+def caption_line(fig, caption):
+    """The caption, in italics, in the strip kept free at the bottom."""
     fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
              fontsize=9, style="italic", color="0.25")
-    fig.draw_without_rendering()  # constrained layout once, then frozen: each save draws only once
+
+
+#: significant digits kept of the axis limits (see ``freeze``)
+LIMIT_DIGITS = 9
+
+
+def freeze(fig):
+    """Lay the figure out once and freeze it, with reproducible bytes.
+
+    Axis limits are rounded to ``LIMIT_DIGITS`` significant digits: autoscaled limits follow the
+    data to its last bit, results at round-off differ in their last bits between machines, and the
+    PDF prints tick positions to 1e-10 pt. The layout solver's last digits vary between processes:
+    the frozen axes positions are rounded so that the PDF coordinates (1e-6 pt) are the same in
+    every run. Each save then draws only once."""
+    for ax in fig.axes:
+        for get, set_ in ((ax.get_xlim, ax.set_xlim), (ax.get_ylim, ax.set_ylim)):
+            set_(*(float(f"{v:.{LIMIT_DIGITS}g}") for v in get()))
+    fig.draw_without_rendering()
     fig.set_layout_engine(None)
-    # the layout solver's last digits vary between processes: round the frozen axes positions so the
-    # PDF coordinates (printed to 1e-6 pt) are the same in every run
     for ax in fig.axes:
         ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
     return fig

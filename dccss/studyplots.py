@@ -27,7 +27,7 @@ from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 
 from .models import REGISTRY
-from .plotting import CAPTION_INCHES, _figure
+from .plotting import _figure, caption_line, freeze
 from .results import MODEL_TITLES
 from .sweep import MODEL_SPECIFIC
 
@@ -142,13 +142,8 @@ def _complete(fig, title, caption, groups):
     by_columns = [row[c] for c in range(ncols) for row in table]  # the legend fills its columns first
     fig.legend(handles=by_columns, loc="outside upper center", ncols=ncols, fontsize=9, frameon=False, title=title,
                title_fontsize=12)
-    fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
-             fontsize=9, style="italic", color="0.25")
-    fig.draw_without_rendering()
-    fig.set_layout_engine(None)
-    for ax in fig.axes:  # rounded: the same PDF coordinates in every run
-        ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
-    return fig
+    caption_line(fig, caption)
+    return freeze(fig)
 
 
 # --- time histories ------------------------------------------------------------------------------
@@ -674,10 +669,5 @@ def convergence(rows, caption: str) -> Figure:
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8, title=f"order fitted on the {FIT_POINTS} smallest Δt", title_fontsize=8)
     fig.suptitle("Stick-slip against Δt: the sticking rotation and the distance to compliant sliding", fontsize=12)
-    fig.text(0.5, 0.1 * CAPTION_INCHES / fig.get_figheight(), caption, ha="center", va="bottom",
-             fontsize=9, style="italic", color="0.25")
-    fig.draw_without_rendering()
-    fig.set_layout_engine(None)
-    for ax in fig.axes:  # rounded: the same PDF coordinates in every run
-        ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")
-    return fig
+    caption_line(fig, caption)
+    return freeze(fig)
