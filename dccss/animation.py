@@ -414,11 +414,10 @@ class Scene:
             head += f", Δt = {attrs['dt_s']:g} s"
         head += (f";  $R^1$ = {g.R1:g} m, $\\alpha^1$ = {np.degrees(g.alpha1):.3g}°, $\\alpha^{{21}}$ = "
                  f"{np.degrees(g.alpha21):.3g}°, $h^2$ = {100 * g.h2:.3g} cm")
-        if attrs.get("case_id"):
-            head += f";  case {attrs['case_id']}"
-        if name:
-            head += f"  —  {name}"
-        self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=12)
+        label = attrs.get("case_id") or name  # the case id says more than the file name
+        if label:
+            head += f"  —  {label}"
+        self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=11)
         notes = _notes(attrs)
         if notes:
             self.fig.text(0.5, 0.006, notes, ha="center", va="bottom", fontsize=8, color="tab:red", linespacing=1.1,

@@ -205,7 +205,13 @@ def _dt_labels(config):
     config["dt"] = [0.01, 0.001, 0.0010000001]
 
 
+def _animation_dt(config):
+    config["animations"]["fig20a_steps"]["dt"] = 0.002
+
+
 WORKFLOW_BAD = [
+    ("animation of a result not run", _animation_dt,
+     "config: animations.fig20a_steps.dt: 0.002 s is not run; dt: [0.01, 0.001]"),
     ("empty breakaway grid", _empty_grid,
      "config: breakaway.theta2_0: the grid from start -10.5 to stop -11.0 by step 0.1 is empty"),
     ("prototype renamed outside the figures", _partial_rename,

@@ -278,3 +278,11 @@ def test_histories_all_runs_every_point_in_full():
     assert [history_mapping(study, i, "compliant")["dt"] for i in range(4)] == [0.01, 0.005, 0.01, 0.005]
     with pytest.raises(CaseError, match="histories: expected a list of sweep points or 'all'"):
         Study.from_config(tiny(histories="some"))
+
+
+def test_animations_are_histories():
+    study = Study.from_config(tiny(animate=[{"alpha21": 10.0, "h2": 0.15}]))
+    assert study.animate == [0]
+    assert Study.from_config(tiny(animate="all")).animate == [0]
+    with pytest.raises(CaseError, match=r"animate\[0\]: \{'alpha21': 8.0, 'h2': 0.15\} is not one of the histories"):
+        Study.from_config(tiny(animate=[{"alpha21": 8.0, "h2": 0.15}]))

@@ -29,6 +29,7 @@ A study file (schema: ``workflow/schemas/study.schema.yaml``)::
     capacity: continue           # the pad reaches a ring: continue (flag), stop (end there) or error
     marks: {DFP1: {alpha21: 10.0, h2: 0.15}}        # points drawn on the maps
     histories: [{alpha21: 10.0, h2: 0.15}]          # cases also run in full (or: all)
+    animate: [{alpha21: 10.0, h2: 0.15}]            # histories also animated (GIF), or: all
 
 Sweep axes: ``prototype`` (a list of device names), any geometry parameter (overriding the
 device's), the excitation's own parameters (``amplitude`` and ``omega`` of a sine), ``scale``

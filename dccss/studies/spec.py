@@ -23,10 +23,10 @@ from .grid import PLATE3_FOLLOWS, Grid
 EXCITATION_AXES = ("amplitude", "omega", "scale")
 AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + ("theta2_0", "dt")
 KEYS = {"study", "prototypes", "prototype", "symmetric", "excitation", "theta2_0", "dt", "models", "normals", "sweep",
-        "chunk_size", "marks", "histories", "newton", "on_failure", "capacity"}
+        "chunk_size", "marks", "histories", "newton", "on_failure", "capacity", "animate"}
 REQUIRED = ("study", "prototype", "excitation", "models", "sweep")
 #: the keys that only the plots and the histories read: the sweep's results do not depend on them
-NOT_SWEPT = ("marks", "histories")
+NOT_SWEPT = ("marks", "histories", "animate")
 #: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log)
 AUTO_CHUNKS = 4
 
@@ -91,6 +91,7 @@ class Study:
     base: Path = Path(".")
     marks: dict = field(default_factory=dict)
     histories: list = field(default_factory=list)
+    animate: list = field(default_factory=list)  # indices of the histories to animate
 
     @cached_property
     def grid(self) -> Grid:
@@ -140,6 +141,7 @@ class Study:
         if histories == "all":
             histories = [study.grid.point(i) for i in range(study.grid.n_cases)]
         study.histories = _histories(histories, axes, dt)
+        study.animate = _animations(config.get("animate", []), study.histories, axes)
         return study
 
 
@@ -227,6 +229,21 @@ def _histories(histories, axes, dt) -> list:
         if dt is None and "dt" not in point:
             raise StudyError(f"histories[{i}]: no dt: give it in the point or as the study's dt")
     return points
+
+
+def _animations(points, histories, axes) -> list:
+    """The indices of the histories to animate: ``all`` or a list of history points."""
+    if points == "all":
+        return list(range(len(histories)))
+    if not isinstance(points, list):
+        raise StudyError(f"animate: expected a list of history points or 'all', got {points!r}")
+    out = []
+    for i, point in enumerate(points):
+        point = _point(point, f"animate[{i}]", axes)
+        if point not in histories:
+            raise StudyError(f"animate[{i}]: {point} is not one of the histories {histories}; add it to histories")
+        out.append(histories.index(point))
+    return out
 
 
 def _check_grid(grid):

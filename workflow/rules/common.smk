@@ -27,7 +27,7 @@ def check_config():
     figure asking for a time step, model, prototype, ground step or variant that is not run is
     such a mistake (figures are neither skipped nor adapted).
     """
-    errors = [*prototype_errors(), *case_set_errors(), *dt_errors(), *breakaway_errors()]
+    errors = [*prototype_errors(), *case_set_errors(), *dt_errors(), *breakaway_errors(), *animation_errors()]
     specs = {}
     try:
         specs = figure_specs(config.get("figures") or {}, runs())
@@ -67,6 +67,25 @@ def breakaway_errors():
     if grid and not breakaway_theta2_0(grid):
         yield (f"breakaway.theta2_0: the grid from start {grid['start']} to stop {grid['stop']} by step "
                f"{grid['step']} is empty (stop < start)")
+
+
+def animation_errors():
+    """Each animation names a result the study runs and a time window inside the motion."""
+    for name, spec in (config.get("animations") or {}).items():
+        key = f"animations.{name}"
+        case_set = spec["case_set"]
+        if case_set not in config["case_sets"]:
+            yield f"{key}.case_set: unknown case set {case_set!r}; defined: {sorted(config['case_sets'])}"
+        elif spec["prototype"] not in config["case_sets"][case_set]["cases"]:
+            yield (f"{key}.prototype: {spec['prototype']!r} is not a case of case set {case_set!r}; "
+                   f"its cases: {sorted(config['case_sets'][case_set]['cases'])}")
+        if spec["model"] not in config["models"]:
+            yield f"{key}.model: {spec['model']!r} is not run; models: {config['models']}"
+        if spec["dt"] not in config["dt"]:
+            yield f"{key}.dt: {spec['dt']} s is not run; dt: {config['dt']}"
+        start, end = spec.get("start", 0.0), spec.get("end", config["duration"])
+        if not 0 <= start < end:
+            yield f"{key}: the window start {start} s .. end {end} s must have 0 <= start < end"
 
 
 def runs():
@@ -149,9 +168,20 @@ def breakaway_params(wildcards):
 
 
 def all_targets():
-    """Every result; for the paper study (a `figures:` section) also its figures and checks."""
+    """Every result; for the paper study (a `figures:` section) also its figures and checks; the
+    animations."""
     paper = ["figures/validation.md", "results/validation.ok"] if "figures" in config else []
-    return all_cases() + all_breakaway() + paper + figure_targets()
+    return all_cases() + all_breakaway() + paper + figure_targets() + animation_targets()
+
+
+# --- animations ---
+def animation_targets():
+    return [f"figures/animations/{name}.gif" for name in config.get("animations") or {}]
+
+
+def animation_input(wildcards):
+    spec = config["animations"][wildcards.name]
+    return case_path(spec["case_set"], spec["prototype"], spec["model"], spec["dt"])
 
 
 # --- figures ---

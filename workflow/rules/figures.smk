@@ -27,3 +27,21 @@ for group, figs in FIGURE_GROUPS.items():
             "../envs/dccss.yaml"
         script:
             "../scripts/figures.py"
+
+
+rule animate:
+    input:
+        animation_input,
+    output:
+        report("figures/animations/{name}.gif", caption="../report/animation.rst", category="Animations"),
+    params:
+        window=lambda w: {k: v for k, v in config["animations"][w.name].items() if k in ("start", "end")},
+        library=ANIMATION_SOURCE,
+    wildcard_constraints:
+        name=one_of(config.get("animations") or {}),
+    log:
+        "logs/animations/{name}.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/animate.py"

@@ -32,6 +32,7 @@ def source_hash(include=None, exclude=()):
 COMPUTE_SOURCE = source_hash(exclude=DRAWING + CHECKING + ("cli.py",))
 FIGURES_SOURCE = source_hash(include=("plotting.py",))
 STUDY_PLOTS_SOURCE = source_hash(include=("plotting.py", "studyplots.py"))
+ANIMATION_SOURCE = source_hash(include=("plotting.py", "animation.py"))
 VALIDATION_SOURCE = source_hash(include=CHECKING)
 
 # numpy and OpenBLAS pick kernels by CPU; AVX-512 kernels round some results differently from the

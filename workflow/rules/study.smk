@@ -79,3 +79,20 @@ rule study_plots:
         "../envs/dccss.yaml"
     script:
         "../scripts/study_plots.py"
+
+
+rule study_animate:
+    input:
+        "results/studies/{study}/histories/{model}_{i}.nc",
+    output:
+        report("figures/studies/{study}/animations/{model}_{i}.gif", caption="../report/animation.rst",
+               category="Animations"),
+    params:
+        window={},
+        library=ANIMATION_SOURCE,
+    log:
+        "logs/studies/{study}/animate_{model}_{i}.log",
+    conda:
+        "../envs/dccss.yaml"
+    script:
+        "../scripts/animate.py"

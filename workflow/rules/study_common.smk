@@ -54,5 +54,13 @@ def study_plots():
     return files + ([f"figures/studies/{STUDY.name}/convergence.csv"] if convergence_plot() else [])
 
 
+def animation_files():
+    return [
+        f"figures/studies/{STUDY.name}/animations/{model}_{i}.gif"
+        for i in STUDY.animate
+        for model in STUDY.models
+    ]
+
+
 def all_targets():
-    return [f"results/studies/{STUDY.name}/{STUDY.name}.nc"] + study_plots()
+    return [f"results/studies/{STUDY.name}/{STUDY.name}.nc"] + study_plots() + animation_files()
