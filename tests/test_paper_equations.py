@@ -614,6 +614,20 @@ def test_eq30_dfp1_value():
 
 
 @pytest.mark.parametrize("name", PRINTED)
+@pytest.mark.parametrize("theta2", [0.0, -0.1, 0.25])
+def test_eq30_as_printed_is_the_determinant_with_alpha_reversed(name, theta2):
+    """The reading of the sign erratum: the printed Eq. 30 is the determinant of the compliant set
+    at rest (Eqs. 16-29) when the contact normals are mirrored, alpha -> -alpha (+0.24795 m for
+    DFP1): the closed form was derived with the opposite sign of alpha, not simulated with it."""
+    g = PRINTED[name]
+    A, B = pad_half_width(g)
+    cset, q = rest_compliant(g, -g.alpha21, theta2)
+    assert cset.determinant(q) == pytest.approx(eq30_printed(A, B, g.alpha21, theta2), rel=1e-10)
+    if name == "DFP1" and theta2 == 0.0:
+        assert cset.determinant(q) == pytest.approx(0.24795, abs=1e-5)
+
+
+@pytest.mark.parametrize("name", PRINTED)
 def test_eq30_also_vanishes_at_tan_alpha_A_over_B(name):
     """A zero missing from the paper's list after Eq. 30: tan(alpha) = A / B."""
     g = PRINTED[name]
