@@ -7,9 +7,9 @@ Run: python benchmarks/solver.py [--repeats N]
 import argparse
 import time
 
-from dccss import models
 from dccss.excitation import Sine, step_times
-from dccss.prototypes import DFP1
+from dccss.mechanics import models
+from dccss.paper.prototypes import DFP1
 
 
 def main():

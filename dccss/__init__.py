@@ -13,22 +13,29 @@ Typical use::
     ds = simulate(g, Sine(amplitude=0.27, omega=30.0, duration=1.0), model="stick_slip", dt=0.001)
     ds.to_netcdf("dfp1.nc")
 
-Modules: ``geometry`` (Table 1 parameters, derived lengths), ``kinematics`` (bodies, corners,
-contact points), ``constraints`` (the constraint sets and their Jacobians), ``newton`` (the
-solver), ``models`` (time steppers), ``excitation`` and ``records`` (X_g(t)), ``results``
-(datasets), ``simulation`` (one case in, one dataset out), ``sweep`` and ``study`` (batched
-sweeps, study files), ``checks``, ``case`` and ``cli`` (input checks, case files, ``dccss run``),
-``files`` (atomic writes), ``plotting``, ``studyplots`` and ``validation``.
+Layout (imports flow downwards only):
+
+* ``mechanics/`` - the model, numpy only: ``geometry``, ``kinematics``, ``constraints``,
+  ``newton``, ``models`` (the steppers and the registry of models), ``capacity`` (the retaining
+  rings), ``compiled`` (the same steppers compiled with Numba, optional);
+* top level - one case in, one dataset out: ``excitation`` and ``records`` (X_g(t)), ``results``
+  (CF datasets), ``simulation``, ``checks``/``case``/``cli`` (input checks, case files, ``dccss
+  run``/``animate``), ``files`` (atomic writes), ``drawing`` (figures and the device to scale),
+  ``animation``;
+* ``studies/`` - study files: ``spec``, ``grid``, ``sweep`` (batched summaries), ``run``,
+  ``combine``, ``plots``;
+* ``paper/`` - what is specific to the paper: ``prototypes`` (Table 1), ``figures``, ``validation``.
 """
 
 import importlib
 
 from ._version import __version__
 
-# the public names, imported on first use so that e.g. `dccss.plotting` loads no solver code
-_LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "geometry", "NewtonOptions": "newton",
-         "ConvergenceError": "newton", "SingularJacobianError": "newton", "simulate": "simulation",
-         "breakaway": "simulation", "CapacityError": "simulation", "Record": "records",
+# the public names, imported on first use so that e.g. `dccss.drawing` loads no solver code
+_LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "mechanics.geometry",
+         "NewtonOptions": "mechanics.newton", "ConvergenceError": "mechanics.newton",
+         "SingularJacobianError": "mechanics.newton", "simulate": "simulation",
+         "breakaway": "simulation", "CapacityError": "mechanics.capacity", "Record": "records",
          "RecordWarning": "records", "Scaled": "excitation"}
 __all__ = ["__version__", *_LAZY]
 

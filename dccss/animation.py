@@ -37,9 +37,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .constraints import Q_NAMES
 from .files import write_atomic
-from .kinematics import CORNERS, interpenetration
+from .mechanics.constraints import Q_NAMES
+from .mechanics.kinematics import CORNERS, interpenetration
 from .results import MODEL_TITLES, geometry_from_attrs
 
 FORMATS = (".gif", ".html", ".mp4")
@@ -251,7 +251,7 @@ class Scene:
     """
 
     def __init__(self, fig, ds, frames, exaggeration=None, name=""):
-        from .plotting import _shapes
+        from .drawing import _shapes
 
         self.fig, self.ds = fig, ds
         self.g = geometry_from_attrs(ds.attrs)
@@ -282,7 +282,7 @@ class Scene:
         from matplotlib.lines import Line2D
         from matplotlib.patches import Patch
 
-        from .plotting import PAD_COLOUR
+        from .drawing import PAD_COLOUR
 
         ax = self.ax = self.fig.add_axes(_DEVICE)
         self.bodies = self._bodies(ax, gid="RB{}")
@@ -312,7 +312,7 @@ class Scene:
 
     def _bodies(self, ax, gid="", alpha=0.9):
         """Filled outlines of RB1, RB3, RB2 (drawn in that order) on ``ax``."""
-        from .plotting import PAD_COLOUR, PLATE_COLOUR
+        from .drawing import PAD_COLOUR, PLATE_COLOUR
 
         return {i: self._add(ax.fill([], [], ec="k", lw=0.8, fc=PAD_COLOUR if i == 2 else PLATE_COLOUR,
                                      alpha=alpha if i == 2 else 1.0, gid=gid.format(i) or None)[0])
@@ -320,7 +320,7 @@ class Scene:
 
     def _extent(self, frames):
         """Points (cm) enclosing every shown configuration."""
-        from .plotting import _pose
+        from .drawing import _pose
 
         pts = []
         for q in (self.q, self.qs) if self.stick else (self.q,):
@@ -333,7 +333,7 @@ class Scene:
         return np.vstack(pts)
 
     def _insets(self, frames):
-        from .plotting import I_LABEL, _length_unit
+        from .drawing import I_LABEL, _length_unit
 
         self.zoom = {}
         for j, c in enumerate(CORNERS):
@@ -359,7 +359,7 @@ class Scene:
         from matplotlib.lines import Line2D
         from matplotlib.ticker import MaxNLocator
 
-        from .plotting import _step_path
+        from .drawing import _step_path
 
         t, ds = self.t, self.ds
         rise = ds["rise"].values if "rise" in ds else self.q["Ry3"] - self.q["Ry3"][0]
@@ -434,7 +434,7 @@ class Scene:
     # --- one step ---------------------------------------------------------------------------
     def show(self, n):
         """Move every dynamic artist to step n (index in the dataset)."""
-        from .plotting import _pose
+        from .drawing import _pose
 
         xy = {i: 100 * _pose(self.shapes[i], *_body(self.q, i, n)) for i in (1, 2, 3)}
         for i, patch in self.bodies.items():
@@ -470,7 +470,7 @@ class Scene:
         self.spikes.set_data(xs, ys)
 
     def _zooms(self, n, xy, pts, centres):
-        from .plotting import _length_unit
+        from .drawing import _length_unit
 
         for j, c in enumerate(CORNERS):
             ins, bodies, segment, point, title, half = self.zoom[c]
@@ -489,7 +489,7 @@ class Scene:
 
     def _ghost(self, n):
         """Draw the end of sticking of step n; returns (theta2, diagonal) or None (no sticking phase)."""
-        from .plotting import _pose
+        from .drawing import _pose
 
         valid = all(math.isfinite(v[n]) for v in self.qs.values())
         for artist in (*self.ghosts.values(), self.ghost_corners, self.diagonal):

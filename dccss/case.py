@@ -36,12 +36,13 @@ import yaml
 
 from .checks import ON_FAILURE, CaseError, check_keys, choice, number
 from .excitation import Scaled, Sine, Table, check_step
-from .geometry import PARAMETERS, Geometry
-from .kinematics import NORMALS
-from .models import MODELS
-from .newton import NewtonOptions
-from .prototypes import TABLE1
-from .simulation import CAPACITY_POLICIES, simulate
+from .mechanics.capacity import CAPACITY_POLICIES
+from .mechanics.geometry import PARAMETERS, Geometry
+from .mechanics.kinematics import NORMALS
+from .mechanics.models import MODELS
+from .mechanics.newton import NewtonOptions
+from .paper.prototypes import TABLE1
+from .simulation import simulate
 
 REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",

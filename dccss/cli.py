@@ -20,8 +20,8 @@ from . import animation
 from ._version import __version__
 from .case import CaseError, load_case
 from .files import write_netcdf
-from .newton import ConvergenceError
-from .simulation import CapacityError
+from .mechanics.capacity import CapacityError
+from .mechanics.newton import ConvergenceError
 
 
 def _summary(ds) -> str:

@@ -10,11 +10,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from . import models
 from ._version import __version__
-from .constraints import Q_NAMES
-from .geometry import PARAMETERS, Geometry
-from .kinematics import CORNERS, corner_diagnostics, interpenetration
+from .mechanics import models
+from .mechanics.constraints import Q_NAMES
+from .mechanics.geometry import PARAMETERS, Geometry
+from .mechanics.kinematics import CORNERS, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
 #: The time coordinate is ``t``: seconds elapsed since the start of the imposed ground motion.
@@ -94,7 +94,7 @@ def _variables(table, dims) -> dict:
 
 def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt, normals,
                     tol, attrs=None) -> xr.Dataset:
-    """Dataset of one case from a history of ``dccss.models`` (time first, no batch dims):
+    """Dataset of one case from a history of ``dccss.mechanics.models`` (time first, no batch dims):
     the configuration, ground motion, rise, interpenetration and clearances of every step, and
     what the model's registry entry adds (its diagnostics and the configurations of its stages)."""
     entry = models.model(model)

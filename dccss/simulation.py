@@ -5,18 +5,12 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from . import models
 from .excitation import step_times
-from .kinematics import corner_diagnostics
-from .newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
+from .mechanics import models
+from .mechanics.capacity import CAPACITY_POLICIES, CapacityError, capacity_message, ring_reached
+from .mechanics.kinematics import corner_diagnostics
+from .mechanics.newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
 from .results import breakaway_dataset, history_dataset
-
-CAPACITY_POLICIES = ("continue", "stop", "error")
-PLATES = ("RB1", "RB3")
-
-
-class CapacityError(ValueError):
-    """The pad reached a retaining ring (the excitation exceeds the device capacity)."""
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
@@ -86,33 +80,6 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         if capacity == "stop" and len(steps) < len(times):
             ds.attrs["stopped_at_s"] = float(times[len(steps) - 1])
     return ds
-
-
-def ring_reached(clearance_1, clearance_3, t) -> dict | None:
-    """When, where and by how much a history passes a retaining ring (None if it does not).
-
-    Returns {"t": first time a clearance is < 0 (s), "plate": "RB1" or "RB3" (the one passed
-    first; the deeper one if both at once), "by": the largest distance beyond a ring over the
-    history (m), "step": the index of that first time}.
-    """
-    gap = np.stack([clearance_1, clearance_3], axis=-1)
-    beyond = (gap < 0).any(axis=-1)
-    if not beyond.any():
-        return None
-    n = int(np.argmax(beyond))
-    return {"t": float(t[n]), "step": n, "plate": PLATES[int(np.argmin(gap[n]))],
-            "by": float(-np.nanmin(gap))}
-
-
-def capacity_message(geometry, reached, tense="reaches") -> str:
-    """'the pad reaches the retaining ring of RB3 at t = ... s (capacity R3 sin(alpha3 - alpha23)
-    = ... cm) and passes it by up to ... mm' (``tense="reached"``: the same in the past)."""
-    j = reached["plate"][-1]
-    capacity = geometry.capacity1 if j == "1" else geometry.capacity3
-    passes = "passes" if tense == "reaches" else "passed"
-    return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
-            f"(step {reached['step']}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
-            f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
 
 
 def _explain(err, geometry, qs, times):

@@ -19,7 +19,7 @@ from dccss import animation
 from dccss.animation import AnimationError, add_parser, animate, draw_frame, frame_steps, select
 from dccss.excitation import Sine
 from dccss.files import write_netcdf
-from dccss.prototypes import DFP1, DFP2
+from dccss.paper.prototypes import DFP1, DFP2
 from dccss.results import geometry_from_attrs
 from dccss.simulation import simulate
 

@@ -9,7 +9,7 @@ import yaml
 from conftest import copy_project, snakemake
 
 from dccss.cli import main
-from dccss.prototypes import TABLE1
+from dccss.paper.prototypes import TABLE1
 from dccss.records import write_at2
 
 CASE = {
@@ -126,7 +126,7 @@ def _negative_dt(config):
 
 
 def _bad_geometry(config):
-    config["prototypes"]["DFP1"]["alpha21"] = 25.0
+    config["prototypes"]["DFP1"] = {**TABLE1["DFP1"], "alpha21": 25.0}
 
 
 WORKFLOW_ROWS = [

@@ -14,7 +14,7 @@ from conftest import DELETE, changed
 
 from dccss.case import CaseError, case_from, load_case
 from dccss.cli import main
-from dccss.prototypes import TABLE1
+from dccss.paper.prototypes import TABLE1
 
 CASE = {
     "prototype": dict(TABLE1["DFP1"]),

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from dccss.excitation import Sine, Table, step_times
-from dccss.prototypes import DFP1, DFP2
+from dccss.paper.prototypes import DFP1, DFP2
 
 
 @pytest.mark.parametrize("geometry, t, velocity", [(DFP1, 0.73, -570.05), (DFP2, 0.94, -672.99)])

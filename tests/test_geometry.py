@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from dccss.geometry import Geometry, _section_centroid
-from dccss.kinematics import all_corners, circle_centre, frames, interpenetration, position
-from dccss.prototypes import DFP1, DFP2, TABLE1
+from dccss.mechanics.geometry import Geometry, _section_centroid
+from dccss.mechanics.kinematics import all_corners, circle_centre, frames, interpenetration, position
+from dccss.paper.prototypes import DFP1, DFP2, TABLE1
 
 
 def test_pad_dimensions_from_table1():

@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 
-from dccss import models, newton
-from dccss.constraints import Sticking, diagonal
 from dccss.excitation import Sine, step_times
-from dccss.geometry import Geometry
-from dccss.kinematics import CORNERS, all_corners, circle_centre, frames, interpenetration, local
-from dccss.prototypes import DFP1, DFP2, TABLE1
+from dccss.mechanics import models, newton
+from dccss.mechanics.constraints import Sticking, diagonal
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.kinematics import CORNERS, all_corners, circle_centre, frames, interpenetration, local
+from dccss.paper.prototypes import DFP1, DFP2, TABLE1
 
 UNEQUAL = Geometry.from_degrees(**{**TABLE1["DFP1"], "R3": 1.3, "alpha23": 8.0})
 

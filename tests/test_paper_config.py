@@ -1,7 +1,7 @@
 """The paper is data: what each figure shows lives in ``config/config.yaml``.
 
 A figure spec that asks for a dataset the study does not run is refused before any job, naming its
-key (``dccss.plotting.figure_specs``, called by the workflow's ``check_config``); a config that
+key (``dccss.paper.figures.figure_specs``, called by the workflow's ``check_config``); a config that
 passes the checks runs to the end: another time step grid, a prototype renamed everywhere, a third
 prototype.
 """
@@ -15,7 +15,8 @@ import pytest
 import yaml
 from conftest import ROOT, copy_project, snakemake
 
-from dccss.plotting import Runs, SpecError, figure_spec, figure_specs
+from dccss.paper.figures import Runs, SpecError, figure_spec, figure_specs
+from dccss.paper.prototypes import TABLE1
 
 CONFIG = yaml.safe_load((ROOT / "config/config.yaml").read_text())
 
@@ -32,14 +33,18 @@ def runs_of(config):
 
 
 def renamed(config, old, new):
-    """``config`` with the prototype ``old`` renamed ``new`` everywhere (names, titles, comments)."""
-    return yaml.safe_load(yaml.safe_dump(config, allow_unicode=True).replace(old, new))
+    """``config`` with the prototype ``old`` renamed ``new`` everywhere (names, titles, comments); the
+    device stays Table 1's ``old``."""
+    out = yaml.safe_load(yaml.safe_dump(config, allow_unicode=True).replace(old, new))
+    if config["prototypes"][old] == old:  # a Table 1 name: the device itself is not renamed
+        out["prototypes"][new] = old
+    return out
 
 
 def with_third_prototype(config, name="DFP3"):
     """A copy of DFP1 with alpha21 = 8 deg, a case of every case set like DFP1."""
     config = copy.deepcopy(config)
-    config["prototypes"][name] = {**config["prototypes"]["DFP1"], "alpha21": 8.0}
+    config["prototypes"][name] = {**TABLE1["DFP1"], "alpha21": 8.0}
     for spec in config["case_sets"].values():
         spec["cases"][name] = dict(spec["cases"]["DFP1"])
     return config

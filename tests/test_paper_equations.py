@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 from numpy import cos, sin
 
-from dccss.constraints import Compliant, Slipping, Sticking, diagonal
-from dccss.geometry import Geometry
-from dccss.kinematics import all_corners, contact_angle, contact_point, frames
-from dccss.prototypes import DFP1, DFP2
+from dccss.mechanics.constraints import Compliant, Slipping, Sticking, diagonal
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.kinematics import all_corners, contact_angle, contact_point, frames
+from dccss.paper.prototypes import DFP1, DFP2
 
 N_CASES = 20
 TOL = 1e-12

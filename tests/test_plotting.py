@@ -12,8 +12,9 @@ import xarray as xr
 import yaml
 
 from dccss.case import geometry_from
+from dccss.drawing import save
 from dccss.excitation import Sine
-from dccss.plotting import KINDS, Panel, figure_spec, figure_specs, render, save
+from dccss.paper.figures import KINDS, Panel, figure_spec, figure_specs, render
 from dccss.simulation import breakaway, simulate
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config/config.yaml").read_text())

@@ -7,9 +7,9 @@ symmetric and not, each run under both models."""
 import numpy as np
 import pytest
 
-from dccss import models
-from dccss.geometry import Geometry
-from dccss.kinematics import interpenetration
+from dccss.mechanics import models
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.kinematics import interpenetration
 
 N_EXAMPLES = 40
 

@@ -302,7 +302,7 @@ def test_synthetic_script_reproduces_the_file():
 
 
 def test_simulate_accepts_a_record():
-    from dccss.prototypes import DFP1
+    from dccss.paper.prototypes import DFP1
     from dccss.simulation import simulate
 
     record = Record.from_file(SYNTHETIC, window=(4.0, 6.0))

@@ -15,7 +15,7 @@ import yaml
 
 from dccss import Sine, breakaway, simulate
 from dccss.case import geometry_from
-from dccss.plotting import figure_specs
+from dccss.paper.figures import figure_specs
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config/config.yaml").read_text())
 FIGURES = figure_specs(CONFIG["figures"])

@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 
 from dccss.excitation import Sine, step_times
-from dccss.geometry import Geometry
-from dccss.newton import ConvergenceError
-from dccss.prototypes import DFP1, TABLE1
-from dccss.simulation import CapacityError, simulate
+from dccss.mechanics.capacity import CapacityError
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.newton import ConvergenceError
+from dccss.paper.prototypes import DFP1, TABLE1
+from dccss.simulation import simulate
 
 #: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, sticking fails at 0.15 s
 BEYOND = Sine(0.9, 10.0, 1.0)

@@ -9,14 +9,14 @@ import xarray as xr
 import yaml
 from conftest import DELETE, changed, copy_project, snakemake
 
-from dccss import models
 from dccss.case import CaseError
 from dccss.excitation import Sine, step_times
-from dccss.geometry import Geometry
-from dccss.newton import NewtonOptions
-from dccss.prototypes import TABLE1
+from dccss.mechanics import models
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.newton import NewtonOptions
+from dccss.paper.prototypes import TABLE1
 from dccss.studies import Study, combine, history_case, history_mapping, run_chunk
-from dccss.sweep import summarize
+from dccss.studies.sweep import summarize
 
 TINY = {
     "study": {"name": "tiny", "description": "test"},

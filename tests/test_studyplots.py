@@ -6,8 +6,8 @@ import xarray as xr
 from matplotlib.collections import PatchCollection, QuadMesh
 from matplotlib.image import AxesImage
 
-from dccss import studyplots
-from dccss.plotting import save
+from dccss.drawing import save
+from dccss.studies import plots as studyplots
 
 MODELS = ("compliant", "stick_slip")
 AXIS_UNITS = {"alpha21": "degree", "h2": "m", "amplitude": "m", "omega": "rad s-1", "scale": "1",

@@ -4,11 +4,12 @@ import numpy as np
 import pytest
 
 from dccss.excitation import Sine, step_times
-from dccss.geometry import Geometry
-from dccss.newton import NewtonOptions
-from dccss.prototypes import TABLE1
-from dccss.simulation import CapacityError, simulate
-from dccss.sweep import summarize
+from dccss.mechanics.capacity import CapacityError
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.newton import NewtonOptions
+from dccss.paper.prototypes import TABLE1
+from dccss.simulation import simulate
+from dccss.studies.sweep import summarize
 
 #: DFP1, and DFP1 with plate 3 steeper (RB3's ring at 15.6 cm reached first)
 DEVICES = [TABLE1["DFP1"], {**TABLE1["DFP1"], "alpha3": 19.0}]

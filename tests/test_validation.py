@@ -1,4 +1,4 @@
-"""dccss.validation on small synthetic datasets: every quantity kind against a hand-computed value,
+"""dccss.paper.validation on small synthetic datasets: every quantity kind against a hand-computed value,
 the statuses and readings, the load-time checks (each naming the entry), missing datasets, and the
 reports (markdown, CSV, JSON) with values at round-off."""
 
@@ -14,7 +14,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from dccss import validation as V
+from dccss.paper import validation as V
 
 ROOT = Path(__file__).resolve().parents[1]
 DT = 0.01

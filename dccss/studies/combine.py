@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..models import REGISTRY
+from ..mechanics.models import REGISTRY
 from ..results import _var, global_attrs
-from ..sweep import MODEL_SPECIFIC, SUMMARIES
+from .sweep import MODEL_SPECIFIC, SUMMARIES
 
 
 def axis_variable(dims, name, values):

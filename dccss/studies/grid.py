@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..excitation import step_times
-from ..geometry import PARAMETERS, Geometry
+from ..mechanics.geometry import PARAMETERS, Geometry
 
 #: with ``symmetric: true`` the plate-3 and cap-23 parameters follow those of plate 1 and cap 21
 PLATE3_FOLLOWS = {"R3": "R1", "alpha3": "alpha1", "alpha23": "alpha21", "hr3": "hr1", "hmin3": "hmin1",

@@ -7,13 +7,13 @@ import xarray as xr
 
 from ..case import Case, case_from
 from ..checks import ON_FAILURE
-from ..geometry import PARAMETERS
-from ..newton import ConvergenceError
+from ..mechanics.capacity import CapacityError
+from ..mechanics.geometry import PARAMETERS
+from ..mechanics.newton import ConvergenceError
 from ..results import _var
-from ..simulation import CapacityError
-from ..sweep import SUMMARIES, summarize
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
+from .sweep import SUMMARIES, summarize
 
 
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:

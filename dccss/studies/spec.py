@@ -11,12 +11,12 @@ import numpy as np
 from ..case import excitation_from, geometry_from, newton_from
 from ..checks import ON_FAILURE, CaseError, check_keys, choice, number
 from ..excitation import check_step
-from ..geometry import ANGLES, PARAMETERS
-from ..kinematics import NORMALS
-from ..models import MODELS
-from ..newton import NewtonOptions
-from ..prototypes import TABLE1
-from ..simulation import CAPACITY_POLICIES
+from ..mechanics.capacity import CAPACITY_POLICIES
+from ..mechanics.geometry import ANGLES, PARAMETERS
+from ..mechanics.kinematics import NORMALS
+from ..mechanics.models import MODELS
+from ..mechanics.newton import NewtonOptions
+from ..paper.prototypes import TABLE1
 from .grid import PLATE3_FOLLOWS, Grid
 
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``)

@@ -11,29 +11,29 @@ from pathlib import Path
 import dccss
 
 LIBRARY = Path(dccss.__file__).parent
-#: modules that draw or check results: the simulations do not run them
-DRAWING = ("plotting.py", "studyplots.py", "animation.py")
-CHECKING = ("validation.py",)
+#: modules that draw or check results (and the command line): the simulations do not run them
+DRAWING = ("drawing.py", "animation.py", "paper/figures.py", "studies/plots.py")
+NOT_COMPUTING = DRAWING + ("paper/validation.py", "cli.py")
 
 
 def source_hash(include=None, exclude=()):
-    """SHA-256 of the dccss sources: the modules or subpackages ``include`` (default: all) minus
-    ``exclude`` (paths relative to the package)."""
-    files = []
-    for name in include or [p.name for p in LIBRARY.iterdir()]:
-        path = LIBRARY / name
-        files += sorted(path.rglob("*.py")) if path.is_dir() else [path] if path.suffix == ".py" else []
+    """SHA-256 of the dccss sources (paths relative to the package): the files ``include`` (default:
+    all) minus ``exclude``."""
+    files = sorted(LIBRARY.rglob("*.py")) if include is None else [LIBRARY / name for name in include]
     digest = hashlib.sha256()
-    for path in sorted(f for f in files if f.relative_to(LIBRARY).parts[0] not in exclude):
-        digest.update(path.relative_to(LIBRARY).as_posix().encode() + b"\0" + path.read_bytes())
+    for path in files:
+        name = path.relative_to(LIBRARY).as_posix()
+        if name not in exclude:
+            for part in (name.encode(), b"\0", path.read_bytes()):
+                digest.update(part)
     return digest.hexdigest()
 
 
-COMPUTE_SOURCE = source_hash(exclude=DRAWING + CHECKING + ("cli.py",))
-FIGURES_SOURCE = source_hash(include=("plotting.py",))
-STUDY_PLOTS_SOURCE = source_hash(include=("plotting.py", "studyplots.py"))
-ANIMATION_SOURCE = source_hash(include=("plotting.py", "animation.py"))
-VALIDATION_SOURCE = source_hash(include=CHECKING)
+COMPUTE_SOURCE = source_hash(exclude=NOT_COMPUTING)
+FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py"))
+STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py"))
+ANIMATION_SOURCE = source_hash(include=("drawing.py", "animation.py"))
+VALIDATION_SOURCE = source_hash(include=("paper/validation.py",))
 
 # numpy and OpenBLAS pick kernels by CPU; AVX-512 kernels round some results differently from the
 # AVX2 ones, and results at round-off then differ in their last digits. The jobs use the AVX2 kernels

@@ -1,6 +1,6 @@
 # The paper's numbers are checked when the workflow is parsed: an entry naming an unknown kind,
 # prototype, corner, model, dt or variant stops it before any job, naming the entry.
-from dccss import validation
+from dccss.paper import validation
 
 try:
     validation.load_values("config/paper_values.yaml", validation.catalogue_from_config(config))

@@ -2,13 +2,13 @@
 
 from _log import logged
 
-from dccss import plotting
+from dccss.drawing import save
+from dccss.paper.figures import figure_spec, render
 from dccss.results import load
 
 with logged(snakemake.log[0]):
     files = {f: load(f) for f in snakemake.input}
     paths = snakemake.params.datasets
     for (fig, entry), png, pdf in zip(snakemake.params.figures.items(), snakemake.output.png, snakemake.output.pdf):
-        spec = plotting.figure_spec(fig, entry)
-        plotting.save(plotting.render(spec, [files[p] for p in paths[fig]], snakemake.params.caption), png, pdf)
+        save(render(figure_spec(fig, entry), [files[p] for p in paths[fig]], snakemake.params.caption), png, pdf)
         print(f"{fig}: {png}, {pdf}")

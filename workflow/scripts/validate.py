@@ -2,8 +2,8 @@
 
 from _log import logged
 
-from dccss import validation
 from dccss.files import write_text
+from dccss.paper import validation
 from dccss.results import load
 
 keys = snakemake.params.results

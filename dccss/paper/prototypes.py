@@ -1,6 +1,6 @@
 """The two prototypes of Table 1 (Bianco, Monti & Belfiore 2021), lengths in m, angles in degrees."""
 
-from .geometry import Geometry
+from ..mechanics.geometry import Geometry
 
 TABLE1 = {
     "DFP1": dict(R1=1.0, R3=1.0, alpha1=21.0, alpha3=21.0, h2=0.15, alpha21=10.0, alpha23=10.0,

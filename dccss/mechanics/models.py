@@ -126,7 +126,7 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
     q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
     corners = all_corners(geometry)
     F = frames(q)
-    locals_ = [local(F, c) for c in corners]
+    locals_ = tuple(local(F, c) for c in corners)
     points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
     yield CompliantStep(0, q, 0, 0.0, locals_, points, normals_)
     history = [q]  # the last converged configurations, newest last, for the predictor
@@ -136,7 +136,7 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
         q = _wrapped(result.q)
         history = history[-3:] + [q]
         F = frames(q)  # the next step's contact data
-        locals_ = [local(F, c) for c in corners]
+        locals_ = tuple(local(F, c) for c in corners)
         step_points, step_normals = points, normals_
         points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
         yield CompliantStep(n, q, result.iterations, result.residual, locals_, step_points, step_normals)

@@ -1,6 +1,6 @@
 """Batched runs reduced to per-case summaries on the fly (no time histories kept).
 
-A sweep solves many cases at once (``dccss.models`` steppers on batch arrays) and keeps, per
+A sweep solves many cases at once (``dccss.mechanics.models`` steppers on batch arrays) and keeps, per
 case, the quantities a design study asks for: the largest pad rotation, the largest sticking
 rotation, the largest rise of RB3, the residual rise and rotation at the end, the largest
 interpenetration at each corner, whether the pad reached a retaining ring, and the Newton
@@ -13,11 +13,11 @@ from dataclasses import fields
 
 import numpy as np
 
-from . import models
-from .geometry import Geometry
-from .kinematics import CORNERS, corner_diagnostics
-from .newton import NewtonOptions
-from .simulation import CAPACITY_POLICIES, CapacityError
+from ..mechanics import models
+from ..mechanics.capacity import CAPACITY_POLICIES, CapacityError
+from ..mechanics.geometry import Geometry
+from ..mechanics.kinematics import CORNERS, corner_diagnostics
+from ..mechanics.newton import NewtonOptions
 
 #: summary variable -> (units, long_name): those of every model, then each model's own
 SUMMARIES = {

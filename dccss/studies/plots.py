@@ -26,9 +26,9 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 
-from .models import REGISTRY
-from .plotting import _figure, caption_line, freeze
-from .results import MODEL_TITLES
+from ..drawing import _figure, caption_line, freeze
+from ..mechanics.models import REGISTRY
+from ..results import MODEL_TITLES
 from .sweep import MODEL_SPECIFIC
 
 #: how each model is drawn: compliant wide and solid underneath, stick-slip narrow and dashed on top

@@ -1,0 +1,8 @@
+"""The mechanics of the three-body model (numpy only; nothing here reads files or draws).
+
+``geometry`` (the Table 1 parameters and what follows from them), ``kinematics`` (bodies, corners
+and contact points), ``constraints`` (the constraint sets with their analytic Jacobians), ``newton``
+(one Newton-Raphson solver for every set), ``models`` (the time steppers, and the registry of
+models), ``capacity`` (the retaining rings) and ``compiled`` (the same steppers compiled with Numba,
+where it is installed).
+"""

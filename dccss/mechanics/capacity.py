@@ -1,0 +1,45 @@
+"""The retaining rings: when, where and by how much a history passes one, and what to do then.
+
+A plate's ring is reached when the clearance between the pad and the ring (``kinematics.
+corner_diagnostics``) becomes negative; the capacity of plate j is R^j sin(alpha^j - alpha^2j)
+(Table 1's X_g,max). ``CAPACITY_POLICIES`` are what a run does then: continue (flag it), stop
+(end the history there) or error.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+CAPACITY_POLICIES = ("continue", "stop", "error")
+PLATES = ("RB1", "RB3")
+
+
+class CapacityError(ValueError):
+    """The pad reached a retaining ring (the excitation exceeds the device capacity)."""
+
+
+def ring_reached(clearance_1, clearance_3, t) -> dict | None:
+    """When, where and by how much a history passes a retaining ring (None if it does not).
+
+    Returns {"t": first time a clearance is < 0 (s), "plate": "RB1" or "RB3" (the one passed
+    first; the deeper one if both at once), "by": the largest distance beyond a ring over the
+    history (m), "step": the index of that first time}.
+    """
+    gap = np.stack([clearance_1, clearance_3], axis=-1)
+    beyond = (gap < 0).any(axis=-1)
+    if not beyond.any():
+        return None
+    n = int(np.argmax(beyond))
+    return {"t": float(t[n]), "step": n, "plate": PLATES[int(np.argmin(gap[n]))],
+            "by": float(-np.nanmin(gap))}
+
+
+def capacity_message(geometry, reached, tense="reaches") -> str:
+    """'the pad reaches the retaining ring of RB3 at t = ... s (capacity R3 sin(alpha3 - alpha23)
+    = ... cm) and passes it by up to ... mm' (``tense="reached"``: the same in the past)."""
+    j = reached["plate"][-1]
+    capacity = geometry.capacity1 if j == "1" else geometry.capacity3
+    passes = "passes" if tense == "reaches" else "passed"
+    return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
+            f"(step {reached['step']}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
+            f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")

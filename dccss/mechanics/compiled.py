@@ -1,0 +1,950 @@
+"""Compiled (Numba) backend of the two kinematic models, for one case and for batches.
+
+The entry points take and return what the numpy reference does:
+
+* ``compliant``, ``stick_slip`` and ``run``: the histories of ``dccss.mechanics.models`` (same keys,
+  shapes, dtypes; the same ConvergenceError / SingularJacobianError messages);
+* ``summarize``: the per-case summaries of ``dccss.studies.sweep.summarize`` (same keys, dtypes, NaN and
+  flag conventions, capacity policies), reduced on the fly inside the compiled loop: memory
+  O(cases), no (T, N, 9) arrays.
+
+The algorithm is the reference's, row for row: the same constraint rows (``constraints``: the
+tangency rows of Eqs. 6-11, the pin rows of Eq. 32, the slip rows of Eq. 37), the prescribed
+rows set first and Newton on the contact rows over the free coordinates (``newton``), the same
+test max|g| <= tol and iteration cap, the same predictors (``models._extrapolate``'s cubic for
+compliant sliding; the previous sticking and slipping increments of ``stick_slip_steps``), the
+same theta2 wrapping, contact projection (signed or unsigned normals), jammed diagonal (A-D,
+or B-C when X_g decreases) and slip set built from the end of sticking (``slip_set``). The
+linear solve is LAPACK's algorithm (Gaussian elimination with partial pivoting, a pivot
+exactly 0 being singular), so the iterates agree with the reference to round-off.
+
+Layout
+------
+A run of batch shape S (the broadcast of the geometry fields, X_g[1:] and theta2(t_0)) is
+flattened to N = prod(S) cases, indexed k, and the cases run in parallel (``prange``), each
+through all its steps. The inputs, per case (``_Batch``):
+
+* ``q0[k]`` (9,): the compatible start of ``models._start``;
+* ``pad[k]`` (4,) complex: the pad-frame positions u^2 of the corners A, B, C, D;
+* ``centre[k]`` (2,) complex, ``radius[k]`` (2,): the concave circles of RB1 and RB3 in their
+  plate frames (C^1, R^1; C^3, R^3);
+* ``dims[k]`` (5,): L, h_s^3, the theta2 = 0 rest ordinate of RB3 (Eq. 41) and the ring
+  abscissae R^1 sin(alpha^1), R^3 sin(alpha^3);
+* ``Xg[n, k]`` (T, N), or (T, 1) when all cases share the ground motion.
+
+Inside a case the state is held in tuples, not arrays (no allocation or reference counting in
+the loop): a configuration q is a 9-tuple ordered as Eq. 4, [R_x^1, R_y^1, theta^1, R_x^2,
+R_y^2, theta^2, R_x^3, R_y^3, theta^3]; its frames F = (R^1, e^1, R^2, e^2, R^3, e^3) hold each
+body's position and e^{i theta} as complex numbers (``kinematics.frames``: points and vectors
+of the plane are x + iy). A constraint set is ``cset`` = (u2, points, normals, n12, k1, k3): the
+corners of its rows, their plate-frame contact points and normals (the pinned points when
+sticking) and, when slipping, the unit normal to C^1C^3 and k_1, k_3 (Eqs. 38, 39). The contact
+rows g (4-tuple) and their Jacobian J (4 x 4) are on the free coordinates (R_x^2, R_y^2,
+theta^2, R_y^3), or (R_x^2, R_y^2, theta^2, R_x^3) when slipping, in the reference's order.
+
+The outputs: histories in (T, N, ...) arrays; summaries in ``acc`` (N, 14) floats and
+``count`` (N, 4) integers (columns named below); per case a failure to raise, ``fail`` (N, 4)
+[step, phase, iteration, status] with its residual and Jacobian, and the steps done. The
+Python side raises the error of the first failure the reference would meet (it steps all
+cases together), with the reference's message builders.
+
+Failed cases follow the reference's two paths: the one-case path (geometry, X_g[1:] and
+theta2(t_0) all scalars; also a batch of one in ``summarize``) and the batch path differ in
+what a failed case reports afterwards (``_solve``).
+
+The kernels compile on first use and are cached on disk (``cache=True``: the ``__pycache__``
+folder beside this file, or ``NUMBA_CACHE_DIR``); other processes load them from there.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import fields
+
+import numpy as np
+
+try:
+    import numba
+    from numba import njit, prange
+except ImportError as err:  # an optional dependency
+    raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
+
+from . import models, newton
+from .constraints import Compliant, Slipping, Sticking, diagonal
+from .geometry import Geometry
+from .kinematics import CORNERS, NORMALS, RB3, all_corners
+from .newton import NewtonOptions
+
+# --- names ---------------------------------------------------------------------------------
+CORNER_A, CORNER_B, CORNER_C, CORNER_D = 0, 1, 2, 3
+#: -1 for the left corners A, C; +1 for the right corners B, D
+SIDE = (-1.0, 1.0, -1.0, 1.0)
+#: the constraint sets (a failure's phase is 0 for compliant sliding and sticking, 1 for slipping)
+COMPLIANT, STICKING, SLIPPING = 0, 1, 2
+#: Newton outcomes; FAILED: a case marked failed (NaN) that goes on
+CONVERGED, NOT_CONVERGED, SINGULAR, FAILED = 0, 1, 2, 3
+#: columns of ``dims``
+L_, HS3, REST, RING1, RING3 = range(5)
+#: columns of the summary accumulators ``acc`` (floats; I_A .. I_D at 2 .. 5; STOPPED is 1.0
+#: once a capacity policy other than "continue" froze the summaries) and ``count`` (integers)
+THETA2_MAX_ABS, RISE_MAX, I_A_MAX, CLEARANCE_MIN, THETA2_END, RISE_END = 0, 1, 2, 6, 7, 8
+STICK_TURN_MAX, RISE_STICK_MAX, FAILURE, REACHED, STOPPED = 9, 10, 11, 12, 13
+N_ACC = 14
+ITERATIONS_MAX, ITERATIONS_SUM, STEPS, REACHED_STEP = 0, 1, 2, 3
+N_COUNT = 4
+#: capacity policies of a summary, in the order of ``simulation.CAPACITY_POLICIES``
+CONTINUE, STOP, ERROR = 0, 1, 2
+
+DEGREES = 180.0 / np.pi  # numpy's degrees(x) is x * (180 / pi)
+TWO_PI = 2 * np.pi
+NAN = np.nan
+
+#: IEEE semantics for a division by zero (as numpy), no Python-style checks in the loops
+OPTIONS = dict(cache=True, error_model="numpy")
+#: the helpers, inlined by LLVM into the per-case loops
+jit = njit(forceinline=True, **OPTIONS)
+
+
+# --- configurations as 9-tuples (Eq. 4) ----------------------------------------------------
+@jit
+def _add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3], a[4] + b[4], a[5] + b[5], a[6] + b[6],
+            a[7] + b[7], a[8] + b[8])
+
+
+@jit
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2], a[3] - b[3], a[4] - b[4], a[5] - b[5], a[6] - b[6],
+            a[7] - b[7], a[8] - b[8])
+
+
+@jit
+def _scale(w, a):
+    return (w * a[0], w * a[1], w * a[2], w * a[3], w * a[4], w * a[5], w * a[6], w * a[7], w * a[8])
+
+
+@jit
+def _has_nan(q):
+    for v in q:
+        if v != v:
+            return True
+    return False
+
+
+NAN9 = (NAN,) * 9
+
+
+@jit
+def _wrapped(q, F):
+    """q with theta2 in (-pi, pi] (``models._wrapped``) and its frames ``F``."""
+    if abs(q[5]) <= np.pi:
+        return q, F
+    theta2 = q[5] - TWO_PI * np.rint(q[5] / TWO_PI)
+    q = (q[0], q[1], q[2], q[3], q[4], theta2, q[6], q[7], q[8])
+    return q, _frames(q)
+
+
+@jit
+def _extrapolate(h0, h1, h2, h3, count):
+    """The cubic through the last ``count`` converged configurations h0..h3 (newest last;
+    lower orders at the start): ``models._extrapolate``, same weights and order of sums."""
+    if count == 1:
+        return h3
+    if count == 2:
+        return _add(_scale(-1.0, h2), _scale(2.0, h3))
+    if count == 3:
+        return _add(_add(h1, _scale(-3.0, h2)), _scale(3.0, h3))
+    return _add(_add(_add(_scale(-1.0, h0), _scale(4.0, h1)), _scale(-6.0, h2)), _scale(4.0, h3))
+
+
+# --- planar kinematics (kinematics.py) -----------------------------------------------------
+@jit
+def _expi(theta):
+    """e^{i theta}; exactly 1 for an unrotated body (the plates, in every set)."""
+    if theta == 0.0:
+        return 1.0 + 0.0j
+    return complex(math.cos(theta), math.sin(theta))
+
+
+@jit
+def _is_unit(e):
+    return e.real == 1.0 and e.imag == 0.0
+
+
+@jit
+def _turn(e, z):
+    """e z, skipping the product for e = 1 (``kinematics.turn``)."""
+    return z if _is_unit(e) else e * z
+
+
+@jit
+def _dot(a, b):
+    """Scalar product of planar vectors, Re(a conj(b))."""
+    return a.real * b.real + a.imag * b.imag
+
+
+@jit
+def _perp(z):
+    """1j z: z turned by +90 degrees."""
+    return complex(-z.imag, z.real)
+
+
+@jit
+def _frames(q):
+    """R^1, e^1, R^2, e^2, R^3, e^3 of a configuration (``kinematics.frames``)."""
+    return (complex(q[0], q[1]), _expi(q[2]), complex(q[3], q[4]), _expi(q[5]),
+            complex(q[6], q[7]), _expi(q[8]))
+
+
+@jit
+def _local(R2, e2, u2, Rj, ej):
+    """A pad corner's position in its plate's frame (``kinematics.local``)."""
+    d = R2 + e2 * u2 - Rj
+    return d if _is_unit(ej) else d * ej.conjugate()
+
+
+@jit
+def _locals(F, pad):
+    """Plate-frame positions of A, B (on RB1) and C, D (on RB3); F = _frames(q)."""
+    R1, e1, R2, e2, R3, e3 = F
+    return (_local(R2, e2, pad[0], R1, e1), _local(R2, e2, pad[1], R1, e1),
+            _local(R2, e2, pad[2], R3, e3), _local(R2, e2, pad[3], R3, e3))
+
+
+@jit
+def _contact(u, centre, radius, side, signed):
+    """Radial projection of a corner (plate frame ``u``) onto its concave circle
+    (``kinematics.contact_point``): the contact point, the unit normal towards the centre (from
+    |alpha| if not ``signed``) and the corner's distance to the centre."""
+    d = u - centre
+    a = abs(d)
+    n = complex(-d.real / a, -d.imag / a)
+    point = centre - radius * n
+    if not signed:
+        n = complex(-side * abs(n.real), n.imag)
+    return point, n, a
+
+
+@jit
+def _contacts(u, centre, radius, signed):
+    """Contact points, normals and centre distances of A, B, C, D."""
+    pA, nA, aA = _contact(u[0], centre[0], radius[0], SIDE[0], signed)
+    pB, nB, aB = _contact(u[1], centre[0], radius[0], SIDE[1], signed)
+    pC, nC, aC = _contact(u[2], centre[1], radius[1], SIDE[2], signed)
+    pD, nD, aD = _contact(u[3], centre[1], radius[1], SIDE[3], signed)
+    return (pA, pB, pC, pD), (nA, nB, nC, nD), (aA, aB, aC, aD)
+
+
+# --- constraint rows (constraints.py) ------------------------------------------------------
+@jit
+def _tangent(R2, e2, Rj, ej, u2, point, normal):
+    """Tangency row (r_P^2 - r_P^j) . n_P^j (Eqs. 6-11): g, the global normal n and
+    dg/dtheta^2 (Eqs. 17-28); dg/dR^2 = n, dg/dR^j = -n."""
+    arm = e2 * u2
+    n = _turn(ej, normal)
+    lever = R2 + arm - Rj
+    return _dot(lever - _turn(ej, point), n), n, _dot(_perp(arm), n)
+
+
+@jit
+def _pin(R2, e2, Rj, ej, u2, point):
+    """Pin rows r_P^2 - r_P^j (Eq. 32) as a complex number h (x row, y row) and the
+    dh/dtheta^2 column (Eqs. 33-36); dh/dR^2 = 1, dh/dR^j = -1."""
+    arm = _perp(e2) * u2
+    pin = _perp(_turn(ej, point))
+    h = R2 - _perp(arm) - Rj + _perp(pin)
+    return h, arm
+
+
+@jit
+def _rows(kind, F, cset):
+    """Contact rows g (4-tuple) and their Jacobian J (4 rows) on the free coordinates, at the
+    configuration whose frames are F (``_frames``).
+
+    ``cset`` = (u2, points, normals, n12, k1, k3): the corners of the rows (pad frame), their
+    contact points and normals (plate frames; the pinned points when sticking) and, when
+    slipping, the unit normal to C^1C^3 and k_1, k_3.
+
+    COMPLIANT (Eq. 5): A, B, C, D on their tangents; free (R_x^2, R_y^2, theta^2, R_y^3).
+    STICKING (Eq. 31): the diagonal's corners u2[0] (on RB1) and u2[1] (on RB3) pinned; same free.
+    SLIPPING (Eq. 37): u2[0], u2[1] on their tangents, G^2 on C^1C^3, RB3 along C^1C^3; free
+    (R_x^2, R_y^2, theta^2, R_x^3).
+    """
+    u2, points, normals, n12, k1, k3 = cset
+    R1, e1, R2, e2, R3, e3 = F
+    if kind == STICKING:
+        h1, arm1 = _pin(R2, e2, R1, e1, u2[0], points[0])
+        h3, arm3 = _pin(R2, e2, R3, e3, u2[1], points[1])
+        return (h1.real, h1.imag, h3.real, h3.imag), ((1.0, 0.0, arm1.real, 0.0), (0.0, 1.0, arm1.imag, 0.0),
+                                                      (1.0, 0.0, arm3.real, 0.0), (0.0, 1.0, arm3.imag, -1.0))
+    gA, nA, tA = _tangent(R2, e2, R1, e1, u2[0], points[0], normals[0])
+    if kind == SLIPPING:
+        gD, nD, tD = _tangent(R2, e2, R3, e3, u2[1], points[1], normals[1])
+        return (gA, gD, _dot(R2, n12) - k1, _dot(R3, n12) - k3), (
+            (nA.real, nA.imag, tA, 0.0), (nD.real, nD.imag, tD, -nD.real),
+            (n12.real, n12.imag, 0.0, 0.0), (0.0, 0.0, 0.0, n12.real))
+    gB, nB, tB = _tangent(R2, e2, R1, e1, u2[1], points[1], normals[1])
+    gC, nC, tC = _tangent(R2, e2, R3, e3, u2[2], points[2], normals[2])
+    gD, nD, tD = _tangent(R2, e2, R3, e3, u2[3], points[3], normals[3])
+    return (gA, gB, gC, gD), ((nA.real, nA.imag, tA, 0.0), (nB.real, nB.imag, tB, 0.0),
+                              (nC.real, nC.imag, tC, -nC.imag), (nD.real, nD.imag, tD, -nD.imag))
+
+
+# --- Newton-Raphson (newton.py) ------------------------------------------------------------
+@jit
+def _max_abs(g):
+    """max |g_i|, NaN if any is NaN."""
+    m = 0.0
+    for v in g:
+        a = abs(v)
+        if a != a:
+            return NAN
+        if a > m:
+            m = a
+    return m
+
+
+@jit
+def _pivot(column):
+    """Partial pivoting: the index of the largest |entry| of a column (the first on ties, as
+    LAPACK's idamax)."""
+    p, best = 0, abs(column[0])
+    for r in range(1, len(column)):
+        if abs(column[r]) > best:
+            p, best = r, abs(column[r])
+    return p
+
+
+@jit
+def _eliminate(pivot, inverse, row, c):
+    """row - (row[c] / pivot[c]) pivot on the entries right of column c of a row [A | b] (the
+    multiplier from the pivot's reciprocal, as LAPACK getf2)."""
+    f = row[c] * inverse
+    return (row[0], row[1] - f * pivot[1] if c < 1 else row[1], row[2] - f * pivot[2] if c < 2 else row[2],
+            row[3] - f * pivot[3], row[4] - f * pivot[4])
+
+
+@jit
+def _solve4(A, b):
+    """Solve A x = b (4 x 4) by Gaussian elimination with partial pivoting (LAPACK getrf/getrs);
+    ok is False when a pivot is exactly zero: numpy's LinAlgError('Singular matrix'). The rows
+    are [A | b]."""
+    r0 = (A[0][0], A[0][1], A[0][2], A[0][3], b[0])
+    r1 = (A[1][0], A[1][1], A[1][2], A[1][3], b[1])
+    r2 = (A[2][0], A[2][1], A[2][2], A[2][3], b[2])
+    r3 = (A[3][0], A[3][1], A[3][2], A[3][3], b[3])
+    p = _pivot((r0[0], r1[0], r2[0], r3[0]))
+    if p == 1:
+        r0, r1 = r1, r0
+    elif p == 2:
+        r0, r2 = r2, r0
+    elif p == 3:
+        r0, r3 = r3, r0
+    if r0[0] == 0.0:
+        return False, b
+    inverse = 1.0 / r0[0]
+    r1, r2, r3 = _eliminate(r0, inverse, r1, 0), _eliminate(r0, inverse, r2, 0), _eliminate(r0, inverse, r3, 0)
+    p = _pivot((r1[1], r2[1], r3[1]))
+    if p == 1:
+        r1, r2 = r2, r1
+    elif p == 2:
+        r1, r3 = r3, r1
+    if r1[1] == 0.0:
+        return False, b
+    inverse = 1.0 / r1[1]
+    r2, r3 = _eliminate(r1, inverse, r2, 1), _eliminate(r1, inverse, r3, 1)
+    if _pivot((r2[2], r3[2])) == 1:
+        r2, r3 = r3, r2
+    if r2[2] == 0.0:
+        return False, b
+    r3 = _eliminate(r2, 1.0 / r2[2], r3, 2)
+    if r3[3] == 0.0:
+        return False, b
+    x3 = r3[4] / r3[3]
+    x2 = (r2[4] - r2[3] * x3) / r2[2]
+    x1 = (r1[4] - r1[2] * x2 - r1[3] * x3) / r1[1]
+    x0 = (r0[4] - r0[1] * x1 - r0[2] * x2 - r0[3] * x3) / r0[0]
+    return True, (x0, x1, x2, x3)
+
+
+@jit
+def _step(kind, q, dq):
+    """q - dq on the free coordinates: R_x^2, R_y^2, theta^2 and R_x^3 (slipping) or R_y^3."""
+    if kind == SLIPPING:
+        return (q[0], q[1], q[2], q[3] - dq[0], q[4] - dq[1], q[5] - dq[2], q[6] - dq[3], q[7], q[8])
+    return (q[0], q[1], q[2], q[3] - dq[0], q[4] - dq[1], q[5] - dq[2], q[6], q[7] - dq[3], q[8])
+
+
+@jit
+def _newton(kind, q, cset, tol, max_iter):
+    """Newton-Raphson on the contact rows from q (prescribed coordinates set). Returns
+    (status, updates taken, max|g| at the last evaluation, q, g, J, frames of q)."""
+    F = _frames(q)
+    g, J = _rows(kind, F, cset)
+    it = 0
+    while True:
+        norm = _max_abs(g)
+        if norm <= tol:
+            return CONVERGED, it, norm, q, g, J, F
+        if it == max_iter:
+            return NOT_CONVERGED, it, norm, q, g, J, F
+        ok, dq = _solve4(J, g)
+        if not ok:
+            return SINGULAR, it, norm, q, g, J, F
+        q = _step(kind, q, dq)
+        it += 1
+        F = _frames(q)
+        g, J = _rows(kind, F, cset)
+
+
+@jit
+def _solve(kind, q, cset, tol, max_iter, mark, one_case):
+    """``newton.solve`` on one case, with the reference's bookkeeping of failed cases.
+
+    A case that failed earlier (NaN in q) is not solved: the batch path reports 0 updates and
+    keeps q (its prescribed values set), the one-case path iterates NaN to the cap. With
+    ``mark`` a failure makes q NaN and returns FAILED with the path's counts; otherwise (and
+    for a singular Jacobian on the one-case path, which raises under both policies) the
+    status is returned for the caller to raise. Returns (status, updates, residual, q, g, J,
+    frames of q).
+    """
+    if _has_nan(q):
+        if one_case:
+            q = NAN9
+        F = _frames(q)
+        g, J = _rows(kind, F, cset)
+        return FAILED, max_iter if one_case else 0, NAN, q, g, J, F
+    status, its, norm, q, g, J, F = _newton(kind, q, cset, tol, max_iter)
+    if status == CONVERGED or not mark or (one_case and status == SINGULAR):
+        return status, its, norm, q, g, J, F
+    if one_case:
+        its, norm = max_iter, NAN
+    elif status == SINGULAR:
+        norm = NAN
+    else:
+        its = max_iter
+    return FAILED, its, norm, NAN9, g, J, _frames(NAN9)
+
+
+@jit
+def _fatal(status):
+    return status == NOT_CONVERGED or status == SINGULAR
+
+
+@jit
+def _record_failure(fail, fail_g, fail_J, k, n, phase, its, status, g, J):
+    fail[k, 0], fail[k, 1], fail[k, 2], fail[k, 3] = n, phase, its, status
+    for i in range(4):
+        fail_g[k, i] = g[i]
+        for j in range(4):
+            fail_J[k, i, j] = J[i][j]
+
+
+# --- the sets of a step (models.py) --------------------------------------------------------
+@jit
+def _slip_set(F, pad, centre, radius, dims, c1, c3, signed):
+    """The slip set (``models.slip_set``) of the diagonal c1 (on RB1), c3 (on RB3) from the
+    end of sticking (frames F): the set's data and R_y^3 of Eq. 41."""
+    R1, e1, R2, e2, R3, e3 = F
+    p1, n1, _ = _contact(_local(R2, e2, pad[c1], R1, e1), centre[0], radius[0], SIDE[c1], signed)
+    p3, n3, _ = _contact(_local(R2, e2, pad[c3], R3, e3), centre[1], radius[1], SIDE[c3], signed)
+    C1 = R1 + _turn(e1, centre[0])
+    C3 = R3 + _turn(e3, centre[1])
+    d = C3 - C1
+    a = abs(d)
+    e = complex(d.real / a, d.imag / a)
+    n12 = _perp(e)
+    cos_theta = -e.imag  # C^3 lies below C^1: e = (sin theta, -cos theta)
+    Ry3_rc = C1.imag - dims[L_] * cos_theta + dims[HS3] + radius[1]  # Eq. 41
+    cset = ((pad[c1], pad[c3], 0j, 0j), (p1, p3, 0j, 0j), (n1, n3, 0j, 0j), n12, _dot(C1, n12), _dot(R3, n12))
+    return cset, Ry3_rc
+
+
+# --- summaries (sweep.py) ------------------------------------------------------------------
+@jit
+def _fmax(a, b):
+    if b != b:
+        return a
+    if a != a:
+        return b
+    return a if a >= b else b
+
+
+@jit
+def _fmin(a, b):
+    if b != b:
+        return a
+    if a != a:
+        return b
+    return a if a <= b else b
+
+
+@jit
+def _nanmax(a, b):
+    """np.maximum: NaN if either is."""
+    if a != a or b != b:
+        return NAN
+    return a if a >= b else b
+
+
+@jit
+def _nanmin(a, b):
+    if a != a or b != b:
+        return NAN
+    return a if a <= b else b
+
+
+@jit
+def _summarise_step(acc, count, n, now, q, u, distance, radius, dims, its, capacity):
+    """Fold step n (configuration q, corner positions u and their distances to the circle
+    centres) into a case's summaries ``acc``, ``count``; the stick-slip entries are folded by
+    the caller. Once the pad has reached a ring under a capacity policy other than "continue"
+    the summaries stay as they were at that step."""
+    stopped = acc[STOPPED] == 1.0
+    if acc[FAILURE] != acc[FAILURE] and not stopped and _has_nan(q):
+        acc[FAILURE] = now
+    if stopped:
+        return
+    theta2 = q[5] * DEGREES
+    rise = q[7] - dims[REST]
+    reach1 = _nanmax(abs(u[0].real), abs(u[1].real))
+    reach3 = _nanmax(abs(u[2].real), abs(u[3].real))
+    gap = _nanmin(dims[RING1] - reach1, dims[RING3] - reach3)
+    acc[THETA2_MAX_ABS] = _fmax(acc[THETA2_MAX_ABS], abs(theta2))
+    acc[RISE_MAX] = _fmax(acc[RISE_MAX], rise)
+    for i in range(4):
+        acc[I_A_MAX + i] = _fmax(acc[I_A_MAX + i], distance[i] - radius[i // 2])
+    acc[CLEARANCE_MIN] = _fmin(acc[CLEARANCE_MIN], gap)
+    acc[THETA2_END] = theta2
+    acc[RISE_END] = rise
+    count[ITERATIONS_MAX] = max(count[ITERATIONS_MAX], its)
+    count[ITERATIONS_SUM] += its
+    count[STEPS] = n
+    if acc[REACHED] != acc[REACHED] and gap < 0:
+        acc[REACHED] = now
+        count[REACHED_STEP] = n
+        if capacity != CONTINUE:
+            acc[STOPPED] = 1.0
+
+
+@jit
+def _summarise_stick(acc, q_stick, theta2_previous, dims):
+    """The stick-slip entries: rotation within the sticking phase and RB3's rise at its end."""
+    if acc[STOPPED] == 1.0:
+        return
+    acc[STICK_TURN_MAX] = _fmax(acc[STICK_TURN_MAX], abs(q_stick[5] * DEGREES - theta2_previous))
+    acc[RISE_STICK_MAX] = _fmax(acc[RISE_STICK_MAX], q_stick[7] - dims[REST])
+
+
+@jit
+def _beyond_ring(u, dims):
+    """The pad has passed a retaining ring (a clearance < 0, as ``simulation.simulate``)."""
+    gap1 = dims[RING1] - _nanmax(abs(u[0].real), abs(u[1].real))
+    gap3 = dims[RING3] - _nanmax(abs(u[2].real), abs(u[3].real))
+    return gap1 < 0 or gap3 < 0
+
+
+@jit
+def _distances(u, centre):
+    return (abs(u[0] - centre[0]), abs(u[1] - centre[0]), abs(u[2] - centre[1]), abs(u[3] - centre[1]))
+
+
+# --- the two models, one case at a time ----------------------------------------------------
+@jit
+def _case_constants(k, pad, centre, radius, dims):
+    """Case k's geometry as tuples (module docstring)."""
+    return ((pad[k, 0], pad[k, 1], pad[k, 2], pad[k, 3]), (centre[k, 0], centre[k, 1]),
+            (radius[k, 0], radius[k, 1]), (dims[k, 0], dims[k, 1], dims[k, 2], dims[k, 3], dims[k, 4]))
+
+
+@njit(**OPTIONS)
+def _compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
+    """``models.compliant_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    pad, centre, radius, dims = case
+    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
+    fail, fail_g, fail_J, done = status_out
+    hq, hlocal, hpoint, hnormal, hits, hres = history_out
+    now, acc_all, count_all, capacity = summary_out
+    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
+    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
+    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    Rx3 = q[6]
+    u = _locals(_frames(q), pad)
+    points, normals, distance = _contacts(u, centre, radius, signed)
+    if record:
+        for i in range(9):
+            hq[0, k, i] = q[i]
+        for i in range(4):
+            hlocal[0, k, i], hpoint[0, k, i], hnormal[0, k, i] = u[i], points[i], normals[i]
+        hits[0, k], hres[0, k] = 0, 0.0
+    if summarise:
+        _summarise_step(acc, count, 0, now[0], q, u, distance, radius, dims, 0, capacity)
+    h0 = h1 = h2 = h3 = q  # the last four converged configurations, newest last
+    history = 1
+    done[k] = 1
+    T = 1 if stop_at_ring and _beyond_ring(u, dims) else xg.shape[0]  # a start beyond a ring: no step
+    for n in range(1, T):
+        guess = _extrapolate(h0, h1, h2, h3, history)
+        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)  # Eq. 5 rows 1-3, 8, 9
+        cset = (pad, points, normals, 0j, 0.0, 0.0)
+        status, its, res, q, g, J, F = _solve(COMPLIANT, guess, cset, tol, max_iter, mark, one_case)
+        if _fatal(status):
+            _record_failure(fail, fail_g, fail_J, k, n, 0, its, status, g, J)
+            break
+        q, F = _wrapped(q, F)
+        if record:
+            for i in range(9):
+                hq[n, k, i] = q[i]
+            for i in range(4):
+                hpoint[n, k, i], hnormal[n, k, i] = points[i], normals[i]
+            hits[n, k], hres[n, k] = its, res
+        h0, h1, h2, h3 = h1, h2, h3, q
+        history = min(history + 1, 4)
+        u = _locals(F, pad)  # the next step's contact data
+        points, normals, distance = _contacts(u, centre, radius, signed)
+        if record:
+            for i in range(4):
+                hlocal[n, k, i] = u[i]
+        if summarise:
+            _summarise_step(acc, count, n, now[n], q, u, distance, radius, dims, its, capacity)
+        done[k] = n + 1
+        if stop_at_ring and _beyond_ring(u, dims):
+            break
+    if summarise:
+        acc_all[k] = acc
+        count_all[k] = count
+
+
+@njit(**OPTIONS)
+def _stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
+    """``models.stick_slip_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    pad, centre, radius, dims = case
+    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
+    fail, fail_g, fail_J, done = status_out
+    hq, hq_stick, hdiagonal, hits_stick, hits, hres_stick, hres = history_out
+    now, acc_all, count_all, capacity = summary_out
+    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
+    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
+    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    Rx3 = q[6]
+    if record:
+        for i in range(9):
+            hq[0, k, i], hq_stick[0, k, i] = q[i], NAN
+        hdiagonal[0, k] = False
+        hits_stick[0, k], hits[0, k], hres_stick[0, k], hres[0, k] = 0, 0, 0.0, 0.0
+    F = _frames(q)
+    u = _locals(F, pad)
+    if summarise:
+        _summarise_step(acc, count, 0, now[0], q, u, _distances(u, centre), radius, dims, 0, capacity)
+    q_previous = q_stick_previous = NAN9  # q(t_{n-2}) and q_stick(t_{n-1}), for the predictors
+    started, down_previous = False, False
+    done[k] = 1
+    T = 1 if stop_at_ring and _beyond_ring(u, dims) else xg.shape[0]  # a start beyond a ring: no step
+    for n in range(1, T):
+        down = xg[n] < xg[n - 1]  # the jammed diagonal: A-D for dX_g >= 0, B-C otherwise
+        c1, c3 = (CORNER_B, CORNER_C) if down else (CORNER_A, CORNER_D)
+        same = started and down_previous == down
+        # sticking (Eq. 31): the diagonal's corners pinned where they are at t_{n-1}
+        R1, e1, R2, e2, R3, e3 = F
+        pins = (_local(R2, e2, pad[c1], R1, e1), _local(R2, e2, pad[c3], R3, e3), 0j, 0j)
+        cset = ((pad[c1], pad[c3], 0j, 0j), pins, pins, 0j, 0.0, 0.0)
+        guess = _sub(_add(q, q_stick_previous), q_previous) if same else q  # the previous sticking increment
+        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)
+        status, its_stick, res_stick, q_stick, g, J, F = _solve(STICKING, guess, cset, tol, max_iter, mark,
+                                                                one_case)
+        if _fatal(status):
+            _record_failure(fail, fail_g, fail_J, k, n, 0, its_stick, status, g, J)
+            break
+        q_stick, F = _wrapped(q_stick, F)
+        # slipping (Eq. 37) from the end of sticking
+        cset, Ry3_rc = _slip_set(F, pad, centre, radius, dims, c1, c3, signed)
+        guess = _sub(_add(q_stick, q), q_stick_previous) if same else q_stick  # the previous slipping increment
+        guess = (q_stick[0], q_stick[1], q_stick[2], guess[3], guess[4], guess[5], guess[6], Ry3_rc, 0.0)
+        status, its, res, q_new, g, J, F = _solve(SLIPPING, guess, cset, tol, max_iter, mark, one_case)
+        if _fatal(status):
+            _record_failure(fail, fail_g, fail_J, k, n, 1, its, status, g, J)
+            break
+        q_previous, q_stick_previous = q, q_stick
+        started, down_previous = True, down
+        q, F = _wrapped(q_new, F)
+        if record:
+            for i in range(9):
+                hq[n, k, i], hq_stick[n, k, i] = q[i], q_stick[i]
+            hdiagonal[n, k] = down
+            hits_stick[n, k], hits[n, k], hres_stick[n, k], hres[n, k] = its_stick, its, res_stick, res
+        if summarise or stop_at_ring:
+            u = _locals(F, pad)
+        if summarise:
+            _summarise_stick(acc, q_stick, q_previous[5] * DEGREES, dims)
+            _summarise_step(acc, count, n, now[n], q, u, _distances(u, centre), radius, dims, its_stick + its,
+                            capacity)
+        done[k] = n + 1
+        if stop_at_ring and _beyond_ring(u, dims):
+            break
+    if summarise:
+        acc_all[k] = acc
+        count_all[k] = count
+
+
+@njit(parallel=True, **OPTIONS)
+def _compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
+    for k in prange(q0.shape[0]):
+        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
+        _compliant_case(k, xg, q0[k], _case_constants(k, pad, centre, radius, dims), flags, history_out,
+                        summary_out, status_out)
+
+
+@njit(parallel=True, **OPTIONS)
+def _stick_slip_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
+    for k in prange(q0.shape[0]):
+        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
+        _stick_slip_case(k, xg, q0[k], _case_constants(k, pad, centre, radius, dims), flags, history_out,
+                         summary_out, status_out)
+
+
+# --- Python entry points -------------------------------------------------------------------
+class _Batch:
+    """The flattened per-case inputs of a run and its status (see the module docstring)."""
+
+    def __init__(self, geometry, Xg, theta2_0):
+        q0, _, _ = models._start(geometry, Xg, theta2_0)  # the reference's checks and start
+        self.shape = shape = q0.shape[:-1]
+        self.one_case = not shape
+        self.N = N = int(np.prod(shape, dtype=np.int64))
+        Xg = np.asarray(Xg, dtype=float)
+        T = self.T = Xg.shape[0]
+        Xg = Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:])  # as models._start
+        if all(d == 1 for d in Xg.shape[1:]):  # one ground motion for all cases
+            self.Xg = np.array(Xg.reshape(T, 1), dtype=float, order="C")
+        else:
+            self.Xg = np.array(np.broadcast_to(Xg, (T,) + shape).reshape(T, N), dtype=float, order="C")
+        self.q0 = np.array(q0.reshape(N, 9), dtype=float, order="C")
+
+        def flat(x, dtype=float):
+            return np.array(np.broadcast_to(np.asarray(x, dtype=dtype), shape).reshape(N), order="C")
+
+        corners = all_corners(geometry)
+        lower, upper = corners[0], corners[3]
+        self.pad = np.stack([flat(c.u2, complex) for c in corners], axis=-1)
+        self.centre = np.stack([flat(lower.centre, complex), flat(upper.centre, complex)], axis=-1)
+        self.radius = np.stack([flat(lower.radius), flat(upper.radius)], axis=-1)
+        ring = geometry.ring_inner_x
+        self.dims = np.stack([flat(geometry.L), flat(geometry.hs3), flat(geometry.Ry3_compatible(0.0)),
+                              flat(ring[..., 0]), flat(ring[..., 1])], axis=-1)
+        # per case: the failure to raise [step, phase, iteration, status] (step -1: none), its
+        # contact residual and Jacobian, and the number of steps done
+        self.fail = np.full((N, 4), -1, dtype=np.int64)
+        self.fail_g = np.zeros((N, 4))
+        self.fail_J = np.zeros((N, 4, 4))
+        self.done = np.zeros(N, dtype=np.int64)
+
+    def run(self, model, options, normals, history_out, summary_out, stop_at_ring=False):
+        kernel = _compliant_batch if model == "compliant" else _stick_slip_batch
+        flags = (normals == "signed", float(options.tol), int(options.max_iter), options.on_failure == "mark",
+                 self.one_case, bool(stop_at_ring))
+        # dynamic scheduling: cases cost alike, but a core may be shared
+        with numba.parallel_chunksize(max(1, self.N // (16 * numba.get_num_threads()))):
+            kernel(self.Xg, self.q0, self.pad, self.centre, self.radius, self.dims, flags, history_out,
+                   summary_out, (self.fail, self.fail_g, self.fail_J, self.done))
+
+    def raise_failure(self, model, geometry, options, times, history=None):
+        """Raise the reference's error for the first failure it would meet, if any.
+
+        The reference steps all cases together: the first (step, phase, iteration) fails; a
+        singular Jacobian names the first such case, non-convergence the largest residual.
+        ``history`` (one case) is attached to the error, up to the last converged step."""
+        failing = np.flatnonzero(self.fail[:, 0] >= 0)
+        if failing.size == 0:
+            return
+        step, phase, its, status = (self.fail[failing, j] for j in range(4))
+        when = np.where(status == NOT_CONVERGED, options.max_iter, its)
+        first = np.lexsort((when, phase, step))[0]
+        tied = failing[(step == step[first]) & (phase == phase[first]) & (when == when[first])]
+        n, phase = int(step[first]), int(phase[first])
+        if status[first] == SINGULAR:
+            k = int(tied.min())
+        else:
+            norms = np.abs(self.fail_g[tied])
+            score = np.where(np.isnan(norms).any(axis=-1), np.inf, norms.max(axis=-1))
+            k = int(tied[np.argmax(score)])
+        cset = self._constraint_set(model, geometry, phase, n)
+        context = models._context(n, times, cset.phase)
+        index = () if self.one_case else tuple(int(i) for i in np.unravel_index(k, self.shape))
+        try:
+            if status[first] == SINGULAR:
+                J = self.fail_J[k] if self.one_case else np.broadcast_to(self.fail_J[k], self.shape + (4, 4))
+                newton._singular(cset, J, context, index)
+            newton._not_converged(cset, self.fail_g[k], options, context, index)
+        except newton.ConvergenceError as err:
+            if history is not None:
+                err.history = history
+            raise
+
+    def _constraint_set(self, model, geometry, phase, n):
+        """A constraint set of the failing phase, for its name and row labels."""
+        if model == "compliant":
+            return Compliant(all_corners(geometry), 0.0, 0.0, [0j] * 4, [0j] * 4)
+        if self.one_case:  # the one-case path names the step's diagonal, the batch path both
+            down = bool(self.Xg[n, 0] < self.Xg[n - 1, 0])
+        else:
+            down = np.zeros(self.shape, dtype=bool)
+        corners = diagonal(geometry, down)
+        if phase == 0:
+            return Sticking(corners, 0.0, 0.0, [0j, 0j])
+        return Slipping(corners, np.zeros(9), [0j, 0j], [0j, 0j], 1j, 0.0, 0.0, 0.0)
+
+
+def _check(model, normals, options):
+    if model not in models.MODELS:
+        raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
+    if normals not in NORMALS:
+        raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
+    if not isinstance(options, NewtonOptions):
+        raise TypeError(f"options must be a NewtonOptions, got {options!r}")
+
+
+def _no_summary():
+    return np.zeros(1), np.zeros((0, N_ACC)), np.zeros((0, N_COUNT), dtype=np.int64), CONTINUE
+
+
+#: the history arrays of each model, in the kernels' order: name -> (trailing shape, dtype)
+HISTORY = {
+    "compliant": {"q": ((9,), float), "local": ((4,), complex), "point": ((4,), complex),
+                  "normal": ((4,), complex), "newton_iterations": ((), np.int64), "residual": ((), float)},
+    "stick_slip": {"q": ((9,), float), "q_stick": ((9,), float), "diagonal_BC": ((), bool),
+                   "newton_iterations_stick": ((), np.int64), "newton_iterations": ((), np.int64),
+                   "residual_stick": ((), float), "residual": ((), float)},
+}
+#: the keys in the order of the reference's histories
+HISTORY_ORDER = {
+    "compliant": ("q", "newton_iterations", "residual", "local", "point", "normal"),
+    "stick_slip": ("q", "newton_iterations", "residual", "q_stick", "diagonal_BC", "newton_iterations_stick",
+                   "residual_stick"),
+}
+
+
+def _no_history(model):
+    return tuple(np.empty((0, 0) + shape, dtype) for shape, dtype in HISTORY[model].values())
+
+
+def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring) -> dict:
+    _check(model, normals, options)
+    batch = _Batch(geometry, Xg, theta2_0)
+    T, N, shape = batch.T, batch.N, batch.shape
+    if stop_at_ring and not batch.one_case:
+        raise ValueError("stop_at_ring runs one case: geometry, Xg[1:] and theta2_0 must be scalars")
+    arrays = {key: np.empty((T, N) + tail, dtype) for key, (tail, dtype) in HISTORY[model].items()}
+    batch.run(model, options, normals, tuple(arrays.values()), _no_summary(), stop_at_ring)
+    steps = int(batch.done.min()) if batch.one_case else T
+
+    def history():
+        out = {key: arrays[key][:steps].reshape((steps,) + shape + arrays[key].shape[2:])
+               for key in HISTORY_ORDER[model]}
+        out["Rx3"] = out["q"][0, ..., RB3]
+        return out
+
+    batch.raise_failure(model, geometry, options, times, history() if batch.one_case else None)
+    return history()
+
+
+def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
+              stop_at_ring=False) -> dict:
+    """Compliant sliding history, as ``dccss.mechanics.models.compliant``: ``q`` (T, ..., 9);
+    ``newton_iterations``, ``residual`` (T, ...); ``local``, ``point``, ``normal`` (T, ..., 4)
+    complex; ``Rx3``.
+
+    ``stop_at_ring`` (one case): end the history at the first step where the pad has passed a
+    retaining ring, before solving further (``simulation.simulate``'s capacity "stop" and
+    "error"). A ConvergenceError of one case carries the history up to the last converged
+    step as ``err.history``."""
+    return _history("compliant", geometry, Xg, theta2_0, normals, options, times, stop_at_ring)
+
+
+def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
+               stop_at_ring=False) -> dict:
+    """Stick-slip history, as ``dccss.mechanics.models.stick_slip``: ``q``, ``q_stick`` (T, ..., 9),
+    ``diagonal_BC``, ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
+    ``stop_at_ring`` and errors as for ``compliant``."""
+    return _history("stick_slip", geometry, Xg, theta2_0, normals, options, times, stop_at_ring)
+
+
+def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
+    """The history of model ``model`` by name (``dccss.mechanics.models.run``)."""
+    _check(model, kw.get("normals", "signed"), kw.get("options", NewtonOptions()))
+    return (compliant if model == "compliant" else stick_slip)(geometry, Xg, theta2_0, **kw)
+
+
+def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, normals="signed",
+              options=NewtonOptions(), times=None) -> dict:
+    """The per-case summaries of ``dccss.studies.sweep.summarize`` (same keys, dtypes and NaN / flag
+    conventions, the same ``capacity`` policies), reduced inside the compiled loop: memory
+    O(cases). ``progress(n, N)`` is called once, when all N steps are done."""
+    from .capacity import CAPACITY_POLICIES
+
+    if capacity not in CAPACITY_POLICIES:
+        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
+    _check(model, normals, options)
+    Xg = np.asarray(Xg, dtype=float)
+    shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
+    if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
+        one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
+        out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), capacity=capacity,
+                        progress=progress, normals=normals, options=options, times=times)
+        return {k: np.reshape(v, shape) for k, v in out.items()}
+    batch = _Batch(geometry, Xg, theta2_0)
+    T, N, shape = batch.T, batch.N, batch.shape
+    now = np.array(times if times is not None else np.arange(T), dtype=float, order="C")
+    acc = np.full((N, N_ACC), np.nan)
+    acc[:, STOPPED] = 0.0
+    count = np.zeros((N, N_COUNT), dtype=np.int64)
+    count[:, REACHED_STEP] = -1
+    batch.run(model, options, normals, _no_history(model), (now, acc, count, CAPACITY_POLICIES.index(capacity)))
+    if capacity == "error" and options.on_failure != "mark":
+        _raise_capacity(batch, acc, count, shape)
+    batch.raise_failure(model, geometry, options, times)
+    if progress is not None:
+        progress(T - 1, T - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):  # failed cases are NaN by design
+        return _summaries(model, acc.reshape(shape + (N_ACC,)), count.reshape(shape + (N_COUNT,)), capacity)
+
+
+def _raise_capacity(batch, acc, count, shape):
+    """capacity "error" without "mark": the reference raises at the first step a case reaches
+    a ring (the first such case), unless a solver failure comes at or before that step."""
+    from .capacity import CapacityError
+
+    steps = count[:, REACHED_STEP]
+    if (steps < 0).all():
+        return
+    n = steps[steps >= 0].min()
+    failing = batch.fail[:, 0] >= 0
+    if failing.any() and batch.fail[failing, 0].min() <= n:
+        return  # the solver's error comes first
+    k = int(np.flatnonzero(steps == n)[0])
+    index = tuple(int(i) for i in np.unravel_index(k, shape)) if shape else ()
+    raise CapacityError(f"the pad reaches a retaining ring at t = {float(acc[k, REACHED]):.6g} s in the case at "
+                        f"batch index {index} (capacity: error)")
+
+
+def _summaries(model, acc, count, capacity):
+    """The summary dict from the accumulators, as the end of ``sweep._summarize``."""
+    failure, reached = acc[..., FAILURE], acc[..., REACHED]
+    out = {"theta2_max_abs": acc[..., THETA2_MAX_ABS], "theta2_end": acc[..., THETA2_END],
+           "rise_max": acc[..., RISE_MAX], "rise_end": acc[..., RISE_END],
+           "clearance_min": acc[..., CLEARANCE_MIN], "capacity_exceeded": ~np.isnan(reached),
+           "newton_iterations_max": np.asarray(count[..., ITERATIONS_MAX], dtype=np.int32),
+           "newton_iterations_mean": np.asarray(count[..., ITERATIONS_SUM]) / np.maximum(count[..., STEPS], 1)}
+    for i, c in enumerate(CORNERS):
+        out[f"I_{c}_max"] = acc[..., I_A_MAX + i]
+    if model == "stick_slip":
+        out.update(sticking_rotation_max=acc[..., STICK_TURN_MAX], rise_stick_max=acc[..., RISE_STICK_MAX])
+    if capacity == "error":  # reaching a ring is this policy's failure
+        failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
+    failed = ~np.isnan(failure)
+    out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
+           for k, v in out.items()}
+    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
+    return out | {"failed": failed, "failure_time": failure,
+                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}
