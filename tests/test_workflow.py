@@ -88,3 +88,38 @@ def test_committed_figures_are_those_a_fresh_run_draws(reproduction):
              ((Path(k).name, v) for k, v in digests(reproduction).items() if k.startswith("figures/"))}
     assert fresh.keys() == committed.keys()
     assert [name for name in fresh if fresh[name] != committed[name]] == []
+
+
+def test_a_library_change_reruns_what_it_affects(reproduction, tmp_path):
+    """The rules take the SHA-256 of the sources they run: a statement added to the solver reruns
+    every simulation (and what reads them), one added to the drawing code only the figures."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    work = tmp_path / "work"
+    shutil.copytree(reproduction, work, symlinks=True)
+    package = tmp_path / "src" / "dccss"
+    shutil.copytree(ROOT / "dccss", package, ignore=shutil.ignore_patterns("__pycache__"))
+    env = {**os.environ, "PYTHONPATH": str(package.parent)}  # this copy of dccss, not the installed one
+
+    def planned():
+        run = subprocess.run([sys.executable, "-m", "snakemake", "--profile", "profiles/default", "-n", "--quiet",
+                              "rules"], cwd=work, env=env, capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr[-2000:]
+        return {p[0]: int(p[1]) for p in (line.split() for line in run.stdout.splitlines())
+                if len(p) == 2 and p[1].isdigit()}
+
+    assert planned() == {}
+    newton = package / "mechanics" / "newton.py"
+    newton.write_text(newton.read_text() + "\nSOLVER_EDITED = True\n")
+    jobs = planned()
+    assert jobs["simulate"] == 8 and jobs["breakaway"] == 4 and jobs["validate"] == 1
+    newton.write_text(newton.read_text().replace("\nSOLVER_EDITED = True\n", ""))
+    assert planned() == {}
+    drawing = package / "drawing.py"
+    drawing.write_text(drawing.read_text() + "\nDRAWING_EDITED = True\n")
+    jobs = planned()
+    assert "simulate" not in jobs and "validate" not in jobs and jobs["animate"] == 4
+    assert sum(n for rule, n in jobs.items() if rule.startswith("figures_")) == 6
