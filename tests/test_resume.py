@@ -14,7 +14,7 @@ from conftest import copy_project, snakemake
 
 def digests(root):
     files = [*root.glob("results/**/*.nc"), *root.glob("figures/*.png"), *root.glob("figures/*.pdf"),
-             root / "figures/validation.md"]
+             *root.glob("figures/animations/*.gif"), root / "figures/validation.md"]
     return {str(f.relative_to(root)): hashlib.sha256(f.read_bytes()).hexdigest() for f in sorted(files)}
 
 

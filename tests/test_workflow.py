@@ -21,7 +21,7 @@ FIGURES = [key for key in CONFIG["figures"] if key.startswith("fig")]
 
 def digests(root: Path):
     files = sorted([*root.glob("results/**/*.nc"), *root.glob("figures/*.png"), *root.glob("figures/*.pdf"),
-                    root / "figures/validation.md"])
+                    *root.glob("figures/animations/*.gif"), root / "figures/validation.md"])
     return {str(f.relative_to(root)): hashlib.sha256(f.read_bytes()).hexdigest() for f in files}
 
 
@@ -83,7 +83,8 @@ def test_committed_figures_are_those_a_fresh_run_draws(reproduction):
     """The figures and report in the repository are what the reproduce command writes (a stale
     committed figure, or one that varies between runs, fails here)."""
     committed = {f.name: hashlib.sha256(f.read_bytes()).hexdigest() for f in sorted(
-        [*ROOT.glob("figures/fig*.png"), *ROOT.glob("figures/fig*.pdf"), ROOT / "figures/validation.md"])}
+        [*ROOT.glob("figures/fig*.png"), *ROOT.glob("figures/fig*.pdf"), *ROOT.glob("figures/animations/*.gif"),
+         ROOT / "figures/validation.md"])}
     fresh = {name: digest for name, digest in
              ((Path(k).name, v) for k, v in digests(reproduction).items() if k.startswith("figures/"))}
     assert fresh.keys() == committed.keys()
