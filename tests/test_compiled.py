@@ -14,6 +14,8 @@ import pytest
 pytest.importorskip("numba")
 pytestmark = pytest.mark.slow  # every test compiles the kernels (about 30 s with an empty cache)
 
+from test_properties import random_device, small_motion  # noqa: E402
+
 from dccss.mechanics import compiled, models, newton  # noqa: E402
 from dccss.mechanics.geometry import Geometry  # noqa: E402
 from dccss.mechanics.kinematics import all_corners, frames, local  # noqa: E402
@@ -23,29 +25,6 @@ from dccss.studies import sweep  # noqa: E402
 TOL = 1e-10
 MARK = newton.NewtonOptions(on_failure="mark")
 NORMALS = ("signed", "unsigned")
-
-
-def random_device(rng, symmetric):
-    """As tests/test_properties.py: a random valid device, symmetric or not."""
-    R1 = rng.uniform(0.8, 3.0)
-    alpha1 = rng.uniform(12.0, 30.0)
-    p = dict(R1=R1, alpha1=alpha1, alpha21=rng.uniform(0.25, 0.6) * alpha1, hr1=0.02, hmin1=rng.uniform(0.05, 0.15),
-             tr1=0.025)
-    p["h2"] = rng.uniform(0.05, 0.25) * R1
-    if symmetric:
-        p.update(R3=R1, alpha3=alpha1, alpha23=p["alpha21"], hr3=0.02, hmin3=p["hmin1"], tr3=0.025)
-    else:
-        R3 = R1 * rng.uniform(0.7, 1.4)
-        alpha3 = rng.uniform(12.0, 30.0)
-        p.update(R3=R3, alpha3=alpha3, alpha23=rng.uniform(0.25, 0.6) * alpha3, hr3=0.02,
-                 hmin3=rng.uniform(0.05, 0.15), tr3=0.025)
-    return Geometry.from_degrees(**p)
-
-
-def small_motion(rng, geometry, steps=40):
-    """As tests/test_properties.py: a half sine within a third of the device's capacity."""
-    amplitude = rng.uniform(0.1, 0.33) * min(geometry.capacity1, geometry.capacity3)
-    return amplitude * np.sin(np.linspace(0.0, np.pi, steps + 1)) * rng.choice([-1.0, 1.0])
 
 
 def stack(devices):
