@@ -43,3 +43,17 @@ def capacity_message(geometry, reached, tense="reaches") -> str:
     return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
             f"(step {reached['step']}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
             f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
+
+
+def mark_failures(summaries, failure, reached, capacity) -> dict:
+    """Per-case summaries with their failures marked: the cases that failed (``failure``: the time,
+    NaN if none) have NaN summaries; under ``capacity="error"`` reaching a ring (``reached``) is
+    such a failure. Adds ``failed``, ``failure_time`` and ``capacity_time``."""
+    if capacity == "error":
+        failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
+    failed = ~np.isnan(failure)
+    out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
+           for k, v in summaries.items()}
+    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
+    return out | {"failed": failed, "failure_time": failure,
+                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}

@@ -70,6 +70,7 @@ except ImportError as err:  # an optional dependency
     raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
 
 from . import models, newton
+from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners
@@ -881,7 +882,6 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     """The per-case summaries of ``dccss.studies.sweep.summarize`` (same keys, dtypes and NaN / flag
     conventions, the same ``capacity`` policies), reduced inside the compiled loop: memory
     O(cases). ``progress(n, N)`` is called once, when all N steps are done."""
-    from .capacity import CAPACITY_POLICIES
 
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
@@ -913,7 +913,6 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
 def _raise_capacity(batch, acc, count, shape):
     """capacity "error" without "mark": the reference raises at the first step a case reaches
     a ring (the first such case), unless a solver failure comes at or before that step."""
-    from .capacity import CapacityError
 
     steps = count[:, REACHED_STEP]
     if (steps < 0).all():
@@ -940,11 +939,4 @@ def _summaries(model, acc, count, capacity):
         out[f"I_{c}_max"] = acc[..., I_A_MAX + i]
     if model == "stick_slip":
         out.update(sticking_rotation_max=acc[..., STICK_TURN_MAX], rise_stick_max=acc[..., RISE_STICK_MAX])
-    if capacity == "error":  # reaching a ring is this policy's failure
-        failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
-    failed = ~np.isnan(failure)
-    out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
-           for k, v in out.items()}
-    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
-    return out | {"failed": failed, "failure_time": failure,
-                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}
+    return mark_failures(out, failure, reached, capacity)

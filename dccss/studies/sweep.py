@@ -14,7 +14,7 @@ from dataclasses import fields
 import numpy as np
 
 from ..mechanics import models
-from ..mechanics.capacity import CAPACITY_POLICIES, CapacityError
+from ..mechanics.capacity import CAPACITY_POLICIES, CapacityError, mark_failures
 from ..mechanics.geometry import Geometry
 from ..mechanics.kinematics import CORNERS, corner_diagnostics
 from ..mechanics.newton import NewtonOptions
@@ -125,11 +125,4 @@ def _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw):
     for i, c in enumerate(CORNERS):
         out[f"I_{c}_max"] = acc["I_max"][..., i]
     out.update({name: acc[name] for name in entry.summaries})
-    if capacity == "error":  # reaching a ring is this policy's failure
-        failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
-    failed = ~np.isnan(failure)
-    out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
-           for k, v in out.items()}
-    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
-    return out | {"failed": failed, "failure_time": failure,
-                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}
+    return mark_failures(out, failure, reached, capacity)
