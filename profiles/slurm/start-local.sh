@@ -143,22 +143,19 @@ if ((changed)) && { running $CTLD_PID slurmctld || running $SLURMD_PID slurmd; }
     say "configuration changed: restarting the daemons"
     bash "$(dirname "$0")/stop-local.sh" --slurm-only
 fi
-if running $CTLD_PID slurmctld; then
-    say "slurmctld already running, pid $(cat $CTLD_PID)"
-else
-    slurmctld
-    for _ in $(seq 20); do running $CTLD_PID slurmctld && break; sleep 0.5; done
-    running $CTLD_PID slurmctld || die "slurmctld did not start: see /var/log/slurm/slurmctld.log"
-    say "slurmctld started, pid $(cat $CTLD_PID)"
-fi
-if running $SLURMD_PID slurmd; then
-    say "slurmd already running, pid $(cat $SLURMD_PID)"
-else
-    slurmd
-    for _ in $(seq 20); do running $SLURMD_PID slurmd && break; sleep 0.5; done
-    running $SLURMD_PID slurmd || die "slurmd did not start: see /var/log/slurm/slurmd.log"
-    say "slurmd started, pid $(cat $SLURMD_PID)"
-fi
+start_daemon() {  # start_daemon NAME PIDFILE: start it unless it runs, wait for its pid file
+    local name=$1 pidfile=$2
+    if running "$pidfile" "$name"; then
+        say "$name already running, pid $(cat "$pidfile")"
+        return
+    fi
+    "$name"
+    for _ in $(seq 20); do running "$pidfile" "$name" && break; sleep 0.5; done
+    running "$pidfile" "$name" || die "$name did not start: see /var/log/slurm/$name.log"
+    say "$name started, pid $(cat "$pidfile")"
+}
+start_daemon slurmctld "$CTLD_PID"
+start_daemon slurmd "$SLURMD_PID"
 
 # 5. wait for the node, then run a job
 say "waiting (up to ${TIMEOUT}s) for node $host to be idle"
