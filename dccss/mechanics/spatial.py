@@ -57,6 +57,13 @@ RIM_POINTS = ("lower_trailing", "lower_leading", "upper_trailing", "upper_leadin
 
 
 # --- rotations ---------------------------------------------------------------------------------
+def cross(a, b):
+    """a x b of two 3-vectors (numpy.cross is slow on single vectors)."""
+    a0, a1, a2 = a.tolist()
+    b0, b1, b2 = b.tolist()
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
 def skew(w):
     return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
@@ -84,9 +91,9 @@ def normal_basis(v):
     """Two unit vectors k_1, k_2 with (k_1, k_2, v/|v|) orthonormal."""
     v = v / np.linalg.norm(v)
     helper = np.array([1.0, 0.0, 0.0]) if abs(v[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    k1 = np.cross(v, helper)
+    k1 = cross(v, helper)
     k1 /= np.linalg.norm(k1)
-    return k1, np.cross(v, k1)
+    return k1, cross(v, k1)
 
 
 def rotation_about(axis, angle) -> np.ndarray:
@@ -157,7 +164,7 @@ def start(geometry, Xg0, theta2_0=0.0, azimuth=0.0) -> Pose:
     s, c = math.sin(theta2_0), math.cos(theta2_0)
     G = R1 + dev.y21 * s * h + (dev.c1 - dev.y21 * c) * Z
     R3 = R1 + dev.L * s * h + float(geometry.Ry3_compatible(theta2_0)) * Z
-    Q = rotation_about(np.cross(h, Z), theta2_0)
+    Q = rotation_about(cross(h, Z), theta2_0)
     return Pose(R1, G, Q, R3)
 
 
@@ -166,13 +173,13 @@ def step_plane(pose, dev, increment, reference):
     """(e1, m): the unit increment (``reference`` for a zero one) and the unit normal of pi."""
     length = math.hypot(increment[0], increment[1])
     e1 = np.array([increment[0] / length, increment[1] / length, 0.0]) if length > 0 else reference
-    return e1, unit(np.cross(e1, pose.C1(dev) - pose.C3(dev)))
+    return e1, unit(cross(e1, pose.C1(dev) - pose.C3(dev)))
 
 
 def section(Q, G, dev, m):
     """The four rim points of the section by the plane normal m (order RIM_POINTS), in space."""
     a = Q[:, 2]
-    u = unit(np.cross(a, m))
+    u = unit(cross(a, m))
     low, up = G - dev.B * a, G + dev.B * a
     return (low - dev.A1 * u, low + dev.A1 * u, up - dev.A3 * u, up + dev.A3 * u)
 
@@ -210,7 +217,7 @@ def _point_rows(J, i, c, r, n=None):
     """Fill row(s) i of J with d/dw_j of a body-fixed vector r (the point minus G^2), projected on
     n if given: (c_j x r) . n."""
     for j in range(2):
-        d = np.cross(c[j], r)
+        d = cross(c[j], r)
         if n is None:
             J[i:i + 3, 3 + j] = d
         else:
@@ -240,13 +247,13 @@ class Compliant(Phase):
         G = x[:3]
         Q, c = self.orientation(x)
         a = Q[:, 2]
-        w = np.cross(a, m)
+        w = cross(a, m)
         nw = np.linalg.norm(w)
         u = w / nw
-        da = [np.cross(cj, a) for cj in c]
+        da = [cross(cj, a) for cj in c]
         du = []
         for daj in da:
-            dw = np.cross(daj, m)
+            dw = cross(daj, m)
             du.append((dw - u * (u @ dw)) / nw)
         R3 = self.R3(x)
         g = np.empty(6)
@@ -321,8 +328,8 @@ class Slipping(Phase):
         self.R1 = stick_pose.R1
         self.R3 = C1 + dev.L * e - dev.c3 * Z  # Eq. 41 and RB3 along C^1C^3 (Eq. 39)
         self.C1, self.C3 = C1, self.R3 + dev.c3 * Z
-        self.ms = unit(np.cross(e1, -e))
-        self.n12 = np.cross(self.ms, e)
+        self.ms = unit(cross(e1, -e))
+        self.n12 = cross(self.ms, e)
         P1 = stick_pose.G + stick_pose.Q @ v1
         P3 = stick_pose.G + stick_pose.Q @ v3
         p1, n1 = project(P1, C1, dev.R1)
@@ -350,7 +357,7 @@ class Slipping(Phase):
             _point_rows(J, i, c, r, normal)
         g[2] = (G - self.C1) @ self.n12
         J[2, :3] = self.n12
-        da = [np.cross(cj, a) for cj in c]
+        da = [cross(cj, a) for cj in c]
         for i, (y, C) in enumerate(((dev.y21, self.C1), (dev.y23, self.C3))):
             g[3 + i] = (G + y * a - C) @ ms
             J[3 + i, :3] = ms
