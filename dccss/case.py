@@ -7,12 +7,22 @@ Format (lengths in m, angles in degrees, times in s)::
                 tr1: 0.0258, tr3: 0.0258}     # or the name of a Table 1 prototype: DFP1, DFP2
     excitation: {kind: sine, amplitude: 0.1908, omega: 30.0, duration: 1.0}
                 # amplitude may be "capacity": R1 sin(alpha1 - alpha21), Table 1's X_g,max
-                # or {kind: table, file: record.csv}  (columns time, displacement; path
+                # or {kind: table, file: record.csv}  (CSV header `time, displacement` (m); path
                 #     relative to the case file)
                 # or {kind: record, file: rec.AT2, scale: 1.0, window: [t0, t1], baseline: linear,
                 #     units: g}  (a PEER NGA .AT2/.VT2/.DT2 or a two-column text file with its units
                 #     in a header or in `units`; see dccss.records)
                 # any kind takes `scale: factor`
+                # Bidirectional ground motion (two horizontal components x, y):
+                # - any of the above with `azimuth: 30.0` (degrees from +x towards +y): the motion
+                #   applied along that direction, X(t) (cos az, sin az); without it, one component
+                # - {kind: table, file: motion.csv}  with the CSV header `time, x, y` (m); a header
+                #     with x but no y (or displacement and x/y) is refused
+                # - {kind: record, file: [x.AT2, y.AT2], scale: .., window: [t0, t1], baseline: ..,
+                #     units: ..}  a record pair (dccss.records.RecordPair): both files processed as
+                #     one record, each with its own units header; their sample times after the
+                #     window must be equal (same dt and npts; never resampled)
+                # a two-component table or record pair takes no `azimuth`
     theta2_0: 0.0          # optional, default 0
     dt: 0.01
     model: compliant       # or stick_slip
@@ -35,7 +45,7 @@ import numpy as np
 import yaml
 
 from .checks import ON_FAILURE, CaseError, check_keys, choice, number
-from .excitation import Scaled, Sine, Table, check_step
+from .excitation import Oriented, Scaled, Sine, check_step, read_table
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
@@ -48,7 +58,8 @@ REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
             "on_failure": "stop"}
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
-EXCITATION_OPTIONAL = {"sine": ("scale",), "table": ("scale",), "record": ("scale", "window", "baseline", "units")}
+EXCITATION_OPTIONAL = {"sine": ("scale", "azimuth"), "table": ("scale", "azimuth"),
+                       "record": ("scale", "window", "baseline", "units", "azimuth")}
 
 
 def geometry_from(value, key="prototype") -> Geometry:
@@ -66,14 +77,19 @@ def geometry_from(value, key="prototype") -> Geometry:
 
 
 def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
-    """A Sine or Table excitation from its mapping; table files are relative to ``base``; a sine
-    amplitude "capacity" is the device's R1 sin(alpha1 - alpha21)."""
+    """A Sine, Table, PlaneTable, Record or RecordPair excitation from its mapping (possibly
+    Scaled, and Oriented by an ``azimuth``); files are relative to ``base``; a sine amplitude
+    "capacity" is the device's R1 sin(alpha1 - alpha21)."""
     if not isinstance(value, dict):
         raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
     kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
     check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind], EXCITATION_OPTIONAL.get(kind, ()))
+    azimuth = number(value["azimuth"], f"{key}.azimuth") if "azimuth" in value else None
     if kind == "record":
-        return record_from(value, base, key)
+        if azimuth is not None and isinstance(value["file"], list):
+            raise CaseError(f"{key}.azimuth: a record pair (file: [x, y]) has two components already; azimuth "
+                            f"orients a one-component excitation: remove it, or give one file")
+        return _oriented(record_from(value, base, key), azimuth, key)
     if kind == "sine":
         amplitude = value["amplitude"]
         amplitude = geometry.capacity1 if amplitude == "capacity" else number(amplitude, f"{key}.amplitude")
@@ -83,19 +99,46 @@ def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
         if not isinstance(value["file"], str):
             raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
         try:
-            excitation = Table.from_csv(base / value["file"])
+            excitation = read_table(base / value["file"])
         except ValueError as err:
             raise CaseError(f"{key}.file: {err}") from None
-    if "scale" not in value:
+        if azimuth is not None and excitation.components != 1:
+            raise CaseError(f"{key}.azimuth: the table {value['file']!r} has two components (columns time, x, y) "
+                            f"already; azimuth orients a one-component table (time, displacement): remove it")
+    if "scale" in value:
+        excitation = Scaled(excitation, number(value["scale"], f"{key}.scale"))
+    return _oriented(excitation, azimuth, key)
+
+
+def _oriented(excitation, azimuth, key):
+    """``excitation`` applied along ``azimuth`` (degrees), or as it is when azimuth is None."""
+    if azimuth is None:
         return excitation
-    return Scaled(excitation, number(value["scale"], f"{key}.scale"))
+    try:
+        return Oriented(excitation, azimuth)
+    except ValueError as err:
+        raise CaseError(f"{key}.azimuth: {err}") from None
 
 
 def record_from(value, base: Path, key="excitation"):
-    """A Record (a ground-motion file processed to displacement) from its mapping; ``units`` states
-    the units of the file's motion when the file does not."""
-    from .records import BASELINES, Record, units_from
+    """A Record (a ground-motion file processed to displacement), or a RecordPair when ``file`` is
+    a list of two files [x, y], from its mapping; ``units`` states the units of the files' motion
+    when a file does not."""
+    from .records import BASELINES, Record, RecordPair, units_from
 
+    file = value["file"]
+    if isinstance(file, list):
+        if len(file) != 2:
+            problem = ("one component is missing" if len(file) == 1 else
+                       "a record has at most two horizontal components" if len(file) > 2 else "it is empty")
+            raise CaseError(f"{key}.file: a record pair is a list of two files [x, y], got {len(file)} "
+                            f"({file!r}): {problem}; for one component give a single file (a string)")
+        for i, f in enumerate(file):
+            if not isinstance(f, str):
+                raise CaseError(f"{key}.file[{i}]: expected a path string, got {type(f).__name__} {f!r}")
+    elif not isinstance(file, str):
+        raise CaseError(f"{key}.file: expected a path string or a list of two [x, y], got "
+                        f"{type(file).__name__} {file!r}")
     scale = number(value.get("scale", 1.0), f"{key}.scale")
     window = value.get("window")
     if window is not None:
@@ -114,7 +157,10 @@ def record_from(value, base: Path, key="excitation"):
         except ValueError as err:
             raise CaseError(f"{key}.units: {err}") from None
     try:
-        return Record.from_file(base / value["file"], scale=scale, window=window, baseline=baseline, units=units)
+        if isinstance(file, list):
+            return RecordPair.from_files([base / f for f in file], scale=scale, window=window, baseline=baseline,
+                                         units=units)
+        return Record.from_file(base / file, scale=scale, window=window, baseline=baseline, units=units)
     except ValueError as err:
         raise CaseError(f"{key}.file: {err}") from None
 

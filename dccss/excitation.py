@@ -1,4 +1,25 @@
-"""Imposed ground displacement histories X_g(t) (m) and velocities (m/s)."""
+"""Imposed ground displacement histories X_g(t) (m) and velocities (m/s).
+
+Every excitation has ``components``: 1 for a ground motion along one horizontal line (the
+planar models' X_g), 2 for a bidirectional one in the horizontal plane. Both kinds have
+``t_start``, ``t_end`` (s), ``parameters`` (what a sweep may vary, per case), ``attrs()``
+(global netCDF attributes: numbers and strings) and ``kind`` (the ``kind`` of its case file
+entry). ``displacement(t)`` (m) and ``velocity(t)`` (m/s) return the shape of ``t`` for one
+component, and that shape plus a last axis (x, y) of length 2 for two.
+
+Two-component excitations also have ``azimuth`` (rad): the reference direction for a zero
+increment, measured from +x towards +y (the azimuth of an :class:`Oriented` input, 0.0
+otherwise); their ``attrs()`` include ``excitation_components = 2`` and
+``excitation_form`` (``"oriented"``, ``"two-column table"``, ``"record pair"``). Azimuths are
+given in degrees (case files, sweeps, ``Oriented``).
+
+* :class:`Sine`, :class:`Table` (CSV ``time, displacement``): one component;
+* :class:`Oriented`: a one-component excitation applied along an azimuth, X(t) (cos az, sin az);
+* :class:`PlaneTable` (CSV ``time, x, y``): two sampled components; :func:`read_table` reads
+  either CSV by its header;
+* ``dccss.records.Record`` (one component) and ``dccss.records.RecordPair`` (two);
+* :class:`Scaled`: any of them times a constant factor.
+"""
 
 from __future__ import annotations
 
@@ -9,9 +30,23 @@ import numpy as np
 
 from .checks import CaseError, number
 
+#: the CSV headers a table excitation may have: one component, two components
+TABLE_HEADERS = (("time", "displacement"), ("time", "x", "y"))
+_ALLOWED_HEADERS = " or ".join(f"'{', '.join(h)}'" for h in TABLE_HEADERS)
+
 
 def _number(name, value, *, positive=False):
     return number(value, f"excitation.{name}", positive=positive)
+
+
+def direction(azimuth_deg):
+    """(cos az, sin az) of an azimuth in degrees (scalars or arrays): the angle is reduced to
+    [0, 360) first (exactly), and multiples of 90° give exact 0 and ±1."""
+    deg = np.mod(np.asarray(azimuth_deg, dtype=float), 360.0)
+    rad = np.radians(deg)
+    c, s = np.cos(rad), np.sin(rad)
+    right = deg % 90.0 == 0.0
+    return np.where(right, np.round(c), c) + 0.0, np.where(right, np.round(s), s) + 0.0
 
 
 @dataclass(frozen=True)
@@ -22,6 +57,7 @@ class Sine:
     omega: float  # omega_g (rad/s)
     duration: float  # t_g (s)
     kind = "sine"
+    components = 1
 
     def __post_init__(self):
         object.__setattr__(self, "amplitude", _number("amplitude", self.amplitude))
@@ -55,6 +91,70 @@ class Sine:
                 "duration_s": self.duration}
 
 
+def _check_samples(source, time, **columns):
+    """(time, *columns) as float arrays, checked: 1-D of equal length, >= 2 samples, finite,
+    time strictly increasing; errors name ``source`` and the column."""
+    t = np.asarray(time, dtype=float)
+    arrays = {name: np.asarray(a, dtype=float) for name, a in columns.items()}
+    for name, a in arrays.items():
+        if t.ndim != 1 or a.shape != t.shape:
+            raise ValueError(f"table excitation ({source}): time and {name} must be "
+                             f"1-D of equal length, got shapes {t.shape} and {a.shape}")
+    if t.size < 2:
+        raise ValueError(f"table excitation ({source}): needs at least 2 samples, got {t.size}")
+    for name, a in (("time", t), *arrays.items()):
+        bad = ~np.isfinite(a)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"table excitation ({source}): {name} sample {i} is not "
+                             f"finite ({a[i]!r})")
+    steps = np.diff(t)
+    if (steps <= 0).any():
+        i = int(np.argmax(steps <= 0))
+        raise ValueError(f"table excitation ({source}): time must increase strictly; "
+                         f"sample {i + 1} ({t[i + 1]!r} s) follows {t[i]!r} s")
+    return (t, *arrays.values())
+
+
+def _read_csv(path):
+    """(path, header, columns) of a table CSV: ``columns`` are the motion columns its header names,
+    ("displacement",) or ("x", "y"); the header is checked against :data:`TABLE_HEADERS`."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"table excitation: file {str(path)!r} does not exist")
+    lines = path.read_text().splitlines()
+    header = [h.strip() for h in lines[0].split(",")] if lines else []
+    name = repr(str(path))
+    plane = [c for c in ("x", "y") if c in header]
+    if "time" not in header or not ("displacement" in header or plane):
+        raise ValueError(f"table excitation: {name} must have a header with columns 'time' and 'displacement' "
+                         f"(one component, m) or 'time', 'x' and 'y' (two components, m), got {header}; "
+                         f"allowed headers: {_ALLOWED_HEADERS}")
+    if "displacement" in header and plane:
+        raise ValueError(f"table excitation: {name} has both 'displacement' and {plane} columns in {header}: "
+                         f"give one component ('time, displacement') or two ('time, x, y'); allowed headers: "
+                         f"{_ALLOWED_HEADERS}")
+    columns = ("displacement",) if not plane else ("x", "y")
+    if plane and len(plane) != 2:
+        missing = "y" if "x" in plane else "x"
+        raise ValueError(f"table excitation: {name} has a column {plane[0]!r} but no {missing!r} (columns found: "
+                         f"{header}): a two-component table needs both; allowed headers: {_ALLOWED_HEADERS}")
+    if plane and len(header) != 3:
+        raise ValueError(f"table excitation: {name}: a two-component table has exactly the columns 'time', 'x' "
+                         f"and 'y', got {header}; allowed headers: {_ALLOWED_HEADERS}")
+    repeated = [c for c in ("time", *columns) if header.count(c) > 1]
+    if repeated:
+        raise ValueError(f"table excitation: {name}: column(s) {repeated} appear more than once in {header}")
+    rows = [line for line in lines[1:] if line.strip()]
+    if not rows:
+        raise ValueError(f"table excitation: {name} has no data rows")
+    try:
+        data = np.loadtxt(rows, delimiter=",", ndmin=2)
+    except ValueError as err:
+        raise ValueError(f"table excitation: {name} is not numeric CSV: {err}") from None
+    return path, header, data, columns
+
+
 @dataclass(frozen=True, eq=False)
 class Table:
     """Sampled X_g: linear interpolation between samples; the velocity is the interpolated
@@ -64,48 +164,22 @@ class Table:
     displacement_samples: np.ndarray  # (n,) m
     source: str = "arrays"
     kind = "table"
+    components = 1
     parameters = ()
 
     def __post_init__(self):
-        t = np.asarray(self.time, dtype=float)
-        x = np.asarray(self.displacement_samples, dtype=float)
-        if t.ndim != 1 or x.shape != t.shape:
-            raise ValueError(f"table excitation ({self.source}): time and displacement must be "
-                             f"1-D of equal length, got shapes {t.shape} and {x.shape}")
-        if t.size < 2:
-            raise ValueError(f"table excitation ({self.source}): needs at least 2 samples, got {t.size}")
-        for name, a in (("time", t), ("displacement", x)):
-            bad = ~np.isfinite(a)
-            if bad.any():
-                i = int(np.argmax(bad))
-                raise ValueError(f"table excitation ({self.source}): {name} sample {i} is not "
-                                 f"finite ({a[i]!r})")
-        steps = np.diff(t)
-        if (steps <= 0).any():
-            i = int(np.argmax(steps <= 0))
-            raise ValueError(f"table excitation ({self.source}): time must increase strictly; "
-                             f"sample {i + 1} ({t[i + 1]!r} s) follows {t[i]!r} s")
+        t, x = _check_samples(self.source, self.time, displacement=self.displacement_samples)
         object.__setattr__(self, "time", t)
         object.__setattr__(self, "displacement_samples", x)
 
     @classmethod
     def from_csv(cls, path) -> Table:
-        """Read a CSV with a header naming the columns ``time`` (s) and ``displacement`` (m)."""
-        path = Path(path)
-        if not path.is_file():
-            raise ValueError(f"table excitation: file {str(path)!r} does not exist")
-        lines = path.read_text().splitlines()
-        header = [h.strip() for h in lines[0].split(",")] if lines else []
-        if "time" not in header or "displacement" not in header:
-            raise ValueError(f"table excitation: {str(path)!r} must have a header with columns "
-                             f"'time' and 'displacement', got {header}")
-        rows = [line for line in lines[1:] if line.strip()]
-        if not rows:
-            raise ValueError(f"table excitation: {str(path)!r} has no data rows")
-        try:
-            data = np.loadtxt(rows, delimiter=",", ndmin=2)
-        except ValueError as err:
-            raise ValueError(f"table excitation: {str(path)!r} is not numeric CSV: {err}") from None
+        """Read a CSV with a header naming the columns ``time`` (s) and ``displacement`` (m)
+        (other columns are ignored; see :func:`read_table` for either kind of table)."""
+        path, header, data, columns = _read_csv(path)
+        if columns != ("displacement",):
+            raise ValueError(f"table excitation: {str(path)!r} has two components (columns {header}): read it with "
+                             f"PlaneTable.from_csv or read_table")
         return cls(data[:, header.index("time")], data[:, header.index("displacement")],
                    source=str(path))
 
@@ -128,9 +202,139 @@ class Table:
                 "table_samples": int(self.time.size)}
 
 
+@dataclass(frozen=True, eq=False)
+class PlaneTable:
+    """Sampled two-component ground displacement (x, y) (m): each component is interpolated
+    linearly between samples; the velocity is the interpolated second-order central difference
+    of each component's samples (numpy.gradient), as in :class:`Table`."""
+
+    time: np.ndarray  # (n,) s, strictly increasing
+    x: np.ndarray  # (n,) m
+    y: np.ndarray  # (n,) m
+    source: str = "arrays"
+    kind = "table"
+    components = 2
+    parameters = ()
+    azimuth = 0.0
+
+    def __post_init__(self):
+        t, x, y = _check_samples(self.source, self.time, x=self.x, y=self.y)
+        object.__setattr__(self, "time", t)
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "y", y)
+
+    @classmethod
+    def from_csv(cls, path) -> PlaneTable:
+        """Read a CSV with a header naming exactly the columns ``time`` (s), ``x`` and ``y`` (m)."""
+        path, header, data, columns = _read_csv(path)
+        if columns != ("x", "y"):
+            raise ValueError(f"table excitation: {str(path)!r} has one component (columns {header}), not the "
+                             f"columns 'time, x, y' of a two-component table")
+        return cls(*(data[:, header.index(c)] for c in ("time", "x", "y")), source=str(path))
+
+    @property
+    def t_start(self):
+        return float(self.time[0])
+
+    @property
+    def t_end(self):
+        return float(self.time[-1])
+
+    @property
+    def displacement_samples(self) -> np.ndarray:
+        """(n, 2) samples (m)."""
+        return np.column_stack([self.x, self.y])
+
+    def displacement(self, t):
+        """(x, y) (m) at times t (s): shape t.shape + (2,)."""
+        return np.stack([np.interp(t, self.time, self.x), np.interp(t, self.time, self.y)], axis=-1)
+
+    def velocity(self, t):
+        """(dx/dt, dy/dt) (m/s) at times t (s): shape t.shape + (2,)."""
+        return np.stack([np.interp(t, self.time, np.gradient(c, self.time)) for c in (self.x, self.y)], axis=-1)
+
+    def attrs(self) -> dict:
+        return {"excitation": "table", "excitation_components": 2, "excitation_form": "two-column table",
+                "table_source": self.source, "table_samples": int(self.time.size), "table_columns": "time, x, y"}
+
+
+def read_table(path):
+    """A :class:`Table` or a :class:`PlaneTable` from a CSV, by its header (:data:`TABLE_HEADERS`)."""
+    path, header, data, columns = _read_csv(path)
+    if columns == ("x", "y"):
+        return PlaneTable(*(data[:, header.index(c)] for c in ("time", "x", "y")), source=str(path))
+    return Table(data[:, header.index("time")], data[:, header.index("displacement")], source=str(path))
+
+
+@dataclass(frozen=True)
+class Oriented:
+    """A one-component excitation X(t) applied along the azimuth ``azimuth_deg`` (degrees, from
+    +x towards +y): displacement X(t) (cos az, sin az), velocity likewise (see :func:`direction`).
+
+    ``parameters`` are the inner excitation's and ``"azimuth"``; ``displacement(t,
+    azimuth=..., **inner)`` evaluates a batch: the azimuth per case in degrees (as in case files
+    and sweeps), the inner parameters (e.g. a Sine's amplitude and omega) passed on, all
+    broadcast against t as ``Sine.displacement`` does (pass t[:, None] for (T, n)); the result
+    has a last axis (x, y): (T, n, 2).
+    """
+
+    excitation: object
+    azimuth_deg: float
+    components = 2
+
+    def __post_init__(self):
+        if getattr(self.excitation, "components", 1) != 1:
+            raise ValueError(f"excitation.azimuth: orients a one-component excitation, but this "
+                             f"{self.excitation.kind} excitation has {self.excitation.components} components already")
+        object.__setattr__(self, "azimuth_deg", _number("azimuth", self.azimuth_deg))
+
+    @property
+    def kind(self):
+        return self.excitation.kind
+
+    @property
+    def parameters(self):
+        return (*self.excitation.parameters, "azimuth")
+
+    @property
+    def azimuth(self) -> float:
+        """The azimuth (rad)."""
+        return float(np.radians(self.azimuth_deg))
+
+    @property
+    def direction(self) -> np.ndarray:
+        """The unit vector (cos az, sin az) the displacement is along."""
+        return np.array(direction(self.azimuth_deg))
+
+    @property
+    def t_start(self):
+        return self.excitation.t_start
+
+    @property
+    def t_end(self):
+        return self.excitation.t_end
+
+    def _along(self, X, azimuth):
+        c, s = direction(self.azimuth_deg if azimuth is None else azimuth)
+        return np.stack(np.broadcast_arrays(X * c, X * s), axis=-1)
+
+    def displacement(self, t, azimuth=None, **parameters):
+        """(x, y) (m) at times t (s): shape of the inner result + (2,); see the class docstring."""
+        return self._along(self.excitation.displacement(t, **parameters), azimuth)
+
+    def velocity(self, t, azimuth=None, **parameters):
+        """(dx/dt, dy/dt) (m/s), as ``displacement``."""
+        return self._along(self.excitation.velocity(t, **parameters), azimuth)
+
+    def attrs(self) -> dict:
+        return {**self.excitation.attrs(), "excitation_components": 2, "excitation_form": "oriented",
+                "excitation_azimuth_deg": self.azimuth_deg}
+
+
 @dataclass(frozen=True)
 class Scaled:
-    """An excitation multiplied by a constant ``factor`` (X_g and its velocity)."""
+    """An excitation multiplied by a constant ``factor`` (X_g and its velocity; both components
+    of a two-component one)."""
 
     excitation: object
     factor: float
@@ -139,6 +343,15 @@ class Scaled:
     @property
     def kind(self):
         return self.excitation.kind
+
+    @property
+    def components(self):
+        return getattr(self.excitation, "components", 1)
+
+    @property
+    def azimuth(self):
+        """The inner excitation's azimuth (rad); only two-component excitations have one."""
+        return self.excitation.azimuth
 
     @property
     def t_start(self):

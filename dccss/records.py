@@ -89,6 +89,14 @@ scale, is reported: a :class:`RecordWarning` and the ``record_warning`` attribut
 Between samples, ``displacement(t)`` and ``velocity(t)`` interpolate the processed samples
 linearly.
 
+Two components
+--------------
+A :class:`RecordPair` is a bidirectional ground motion: two records, the x and y components,
+each processed as above with the same scale, window and baseline (each file's units its own).
+Their sample times after the window must be the same (equal npts, times within 1e-9 of the
+step); different steps or lengths are refused, naming both files with their dt and npts:
+nothing is resampled.
+
 Errors are ``ValueError``s that name the file (or the ``source`` of arrays), the line where there
 is one, and the problem.
 """
@@ -653,6 +661,7 @@ class Record:
     """
 
     kind = "record"
+    components = 1
     parameters = ()
 
     def __init__(self, time, acceleration=None, *, velocity=None, displacement=None, units=None, source="arrays",
@@ -792,3 +801,122 @@ class Record:
         return (f"Record({Path(self.source).name!r}, {self.quantity} in {self.units}, {self.npts} samples, "
                 f"t = {self.t_start:g}..{self.t_end:g} s, scale={self.scale:g}, baseline={self.baseline!r}, "
                 f"PGA={self.pga / G:.3f} g, PGD={self.pgd:.3f} m)")
+
+
+class RecordPair:
+    """Bidirectional ground motion from two records: ``x`` and ``y``, the two horizontal
+    components (along +x and +y), each a :class:`Record` processed on its own (its file's units,
+    the same ``scale``, ``window`` and ``baseline``).
+
+    Both must have the same sample times after the window (equal npts, and times equal within
+    1e-9 of the step): two components with different steps or lengths are refused, never
+    resampled. ``displacement(t)`` and ``velocity(t)`` interpolate each component linearly and
+    return shape t.shape + (2,) (x, y in m, m/s).
+
+    Attributes
+    ----------
+    x, y : Record
+        The components.
+    time : ndarray
+        The x component's sample times (s).
+    displacement_samples, velocity_samples : ndarray, shape (npts, 2)
+        The processed samples of both components.
+    warning : str
+        The components' warnings (RecordWarning texts), "; "-joined ("" if none).
+    """
+
+    kind = "record"
+    components = 2
+    parameters = ()
+    azimuth = 0.0  # rad: the reference direction (+x)
+
+    def __init__(self, x: Record, y: Record):
+        for name, record in (("x", x), ("y", y)):
+            if not isinstance(record, Record) or record.components != 1:
+                raise ValueError(f"record pair: the {name} component must be a one-component Record, got {record!r}")
+        tol = _SNAP * float(min(np.min(np.diff(x.time)), np.min(np.diff(y.time))))
+        if x.npts != y.npts or np.max(np.abs(x.time - y.time)) > tol:
+            def where(r):
+                return (f"{r.source!r}: npts={r.npts}, dt={r.dt!r} s, t = {r.t_start!r} to {r.t_end!r} s "
+                        f"(raw npts={r.raw_npts})")
+            cut = " after the window" if x.window is not None else ""
+            raise ValueError(f"record pair: the two components must have the same sample times{cut}, but "
+                             f"x {where(x)} and y {where(y)}; dccss does not resample: give two components recorded "
+                             f"together (same dt and npts), or a window both cover")
+        self.x, self.y = x, y
+
+    @classmethod
+    def from_files(cls, paths, scale=1.0, window=None, baseline=None, units=None) -> RecordPair:
+        """Read and process the two files ``paths = (x, y)`` as :meth:`Record.from_file` does,
+        with the same ``scale``, ``window``, ``baseline`` and ``units`` (each file's own units
+        header is honoured; ``units`` must agree with it where it states units)."""
+        if isinstance(paths, (str, Path)) or len(paths) != 2:
+            raise ValueError(f"record pair: expected two files [x, y], got {paths!r}")
+        for i, p in enumerate(paths):
+            if not isinstance(p, (str, Path)):
+                raise ValueError(f"record pair: file {i} must be a path, got {p!r}")
+        x, y = (Record.from_file(p, scale=scale, window=window, baseline=baseline, units=units) for p in paths)
+        return cls(x, y)
+
+    @property
+    def records(self) -> tuple[Record, Record]:
+        return self.x, self.y
+
+    @property
+    def time(self) -> np.ndarray:
+        return self.x.time
+
+    @property
+    def t_start(self) -> float:
+        return self.x.t_start
+
+    @property
+    def t_end(self) -> float:
+        return self.x.t_end
+
+    @property
+    def npts(self) -> int:
+        return self.x.npts
+
+    @property
+    def dt(self) -> float:
+        return self.x.dt
+
+    @property
+    def displacement_samples(self) -> np.ndarray:
+        return np.column_stack([self.x.displacement_samples, self.y.displacement_samples])
+
+    @property
+    def velocity_samples(self) -> np.ndarray:
+        return np.column_stack([self.x.velocity_samples, self.y.velocity_samples])
+
+    @property
+    def pgd(self) -> float:
+        """Peak horizontal ground displacement: max |(x, y)| over the samples (m)."""
+        return float(np.max(np.hypot(self.x.displacement_samples, self.y.displacement_samples)))
+
+    @property
+    def warning(self) -> str:
+        return "; ".join(w for w in (self.x.warning, self.y.warning) if w)
+
+    def displacement(self, t):
+        """(x, y) ground displacement (m) at times t (s): shape t.shape + (2,)."""
+        return np.stack([self.x.displacement(t), self.y.displacement(t)], axis=-1)
+
+    def velocity(self, t):
+        """(x, y) ground velocity (m/s) at times t (s): shape t.shape + (2,)."""
+        return np.stack([self.x.velocity(t), self.y.velocity(t)], axis=-1)
+
+    def attrs(self) -> dict:
+        """netCDF global attributes: the pair, and each component's :meth:`Record.attrs` with its
+        keys prefixed ``record_x_`` and ``record_y_`` (source, sha256, units, processing, peaks,
+        warning)."""
+        attrs = {"excitation": "record", "excitation_components": 2, "excitation_form": "record pair",
+                 "record_npts": self.npts, "record_dt_s": self.dt, "record_peak_horizontal_displacement_m": self.pgd}
+        for name, record in (("x", self.x), ("y", self.y)):
+            attrs.update({f"record_{name}_{k.removeprefix('record_')}": v for k, v in record.attrs().items()
+                          if k != "excitation"})
+        return attrs
+
+    def __repr__(self):
+        return f"RecordPair(x={self.x!r}, y={self.y!r})"

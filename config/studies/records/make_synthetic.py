@@ -1,4 +1,4 @@
-"""Write ``synthetic.AT2``: a SYNTHETIC accelerogram for the recorded-motion studies.
+"""Write ``synthetic.AT2`` and ``synthetic_y.AT2``: SYNTHETIC accelerograms for the recorded-motion studies.
 
 This is not a recorded earthquake. Real records (e.g. from the PEER NGA-West2 database) may not be
 redistributed, so the repository ships this deterministic stand-in with realistic amplitudes:
@@ -11,31 +11,45 @@ redistributed, so the repository ships this deterministic stand-in with realisti
   exp(-3) ≈ 5 % at 20 s;
 * scaled to a peak ground acceleration of 0.35 g.
 
+``synthetic_y.AT2`` is a second horizontal component for bidirectional studies (a record pair,
+``file: [records/synthetic.AT2, records/synthetic_y.AT2]``, x then y): the same recipe, dt and
+NPTS with other random phases (seed 2022) and a peak of 0.30 g, so the pair shakes in both
+directions with different histories. ``synthetic.AT2`` is the x component, byte for byte as
+before.
+
 After the default processing of ``dccss.records.Record`` (linear velocity baseline) the peak
-ground displacement is about 15 cm (PGV about 0.38 m/s), below the ~19-22 cm capacity of the Table 1 prototypes.
+ground displacement is about 15 cm (PGV about 0.38 m/s), below the ~19-22 cm capacity of the Table 1 prototypes;
+for ``synthetic_y.AT2`` PGD is about 9.4 cm (PGV about 0.31 m/s), and the pair's peak horizontal
+ground displacement max |(x, y)| is about 15 cm (12 cm in the 0-12 s window of the ground-motion study).
 
 To run a study on a real record instead, download it as a PEER ``.AT2`` file (or ``.VT2``/``.DT2``,
 or write a two-column text file whose header states the units, e.g. ``time (s), acceleration (g)``)
 and point the case at it, e.g. in Python ``Record.from_file("RSN1234_NORTHR_XYZ090.AT2", scale=1.0,
 window=(0.0, 20.0))``, or in a case file an excitation of kind ``record`` whose ``file`` is that
-path (relative to the case file); ``units`` states the units of a file that does not.
+path (relative to the case file); ``units`` states the units of a file that does not. For a real
+two-component pair give both horizontal components of the same station and event, e.g.
+``file: [RSN1234_NORTHR_XYZ090.AT2, RSN1234_NORTHR_XYZ360.AT2]`` (x, then y: here x along the
+090 component, y along 360); the two components of one recording
+have the same dt; where their NPTS differ, a ``window`` both cover gives them the same samples.
 
-Usage: ``python config/studies/records/make_synthetic.py`` (rewrites the file next to it).
+Usage: ``python config/studies/records/make_synthetic.py`` (rewrites both files next to it).
 """
 
 from pathlib import Path
 
 import numpy as np
 
-from dccss.records import Record, write_at2
+from dccss.records import Record, RecordPair, write_at2
 
 DT = 0.01  # s
 NPTS = 2000
 PGA_G = 0.35
 SEED = 2021
+SEED_Y, PGA_G_Y = 2022, 0.30  # the y component
 F_LO, F_HI, N_FREQ, F_CORNER = 0.3, 5.0, 200, 0.3  # Hz, Hz, -, Hz
 RISE, STRONG_END, DECAY = 2.0, 8.0, 3.0  # s, s, e-folds from STRONG_END to the end
 OUT = Path(__file__).with_name("synthetic.AT2")
+OUT_Y = Path(__file__).with_name("synthetic_y.AT2")
 
 
 def envelope(t):
@@ -44,26 +58,30 @@ def envelope(t):
     return np.where(t < RISE, (t / RISE) ** 2, np.where(t > STRONG_END, decay, 1.0))
 
 
-def synthetic_acceleration():
-    """(t, acceleration in g) of the synthetic record."""
-    rng = np.random.default_rng(SEED)
+def synthetic_acceleration(seed=SEED, pga_g=PGA_G):
+    """(t, acceleration in g) of the synthetic record (default: ``synthetic.AT2``; ``seed=SEED_Y,
+    pga_g=PGA_G_Y``: ``synthetic_y.AT2``)."""
+    rng = np.random.default_rng(seed)
     t = DT * np.arange(NPTS)
     f = np.linspace(F_LO, F_HI, N_FREQ)
     amplitude = (f / F_CORNER) ** 2 / (1 + (f / F_CORNER) ** 2)
     phase = rng.uniform(0.0, 2 * np.pi, N_FREQ)
     noise = (amplitude[:, None] * np.sin(2 * np.pi * f[:, None] * t + phase[:, None])).sum(axis=0)
     acc = noise * envelope(t)
-    return t, PGA_G * acc / np.max(np.abs(acc))
+    return t, pga_g * acc / np.max(np.abs(acc))
 
 
 def main():
-    _, acc = synthetic_acceleration()
-    write_at2(OUT, DT, acc, title=f"SYNTHETIC ACCELEROGRAM, NOT A RECORDED MOTION: dccss make_synthetic.py, "
-                                  f"seed {SEED}, {F_LO}-{F_HI} Hz, PGA {PGA_G} g",
-              database="dccss synthetic record (config/studies/records/make_synthetic.py)")
-    record = Record.from_file(OUT)
-    print(f"wrote {OUT}: {record.npts} samples, dt = {record.dt} s, PGA = {record.pga / 9.80665:.3f} g, "
-          f"PGV = {record.pgv:.3f} m/s, PGD = {record.pgd:.3f} m")
+    for out, seed, pga_g, component in ((OUT, SEED, PGA_G, ""), (OUT_Y, SEED_Y, PGA_G_Y, ", y component")):
+        _, acc = synthetic_acceleration(seed, pga_g)
+        write_at2(out, DT, acc, title=f"SYNTHETIC ACCELEROGRAM, NOT A RECORDED MOTION: dccss make_synthetic.py, "
+                                      f"seed {seed}, {F_LO}-{F_HI} Hz, PGA {pga_g} g{component}",
+                  database="dccss synthetic record (config/studies/records/make_synthetic.py)")
+        record = Record.from_file(out)
+        print(f"wrote {out}: {record.npts} samples, dt = {record.dt} s, PGA = {record.pga / 9.80665:.3f} g, "
+              f"PGV = {record.pgv:.3f} m/s, PGD = {record.pgd:.3f} m")
+    pair = RecordPair.from_files([OUT, OUT_Y])
+    print(f"pair: peak horizontal ground displacement |(x, y)| = {pair.pgd:.3f} m")
 
 
 if __name__ == "__main__":
