@@ -67,6 +67,11 @@ _HTML_ICONS = {  # the player's buttons in common glyphs, without the web font o
     "fa-step-backward": "|\u25c0", "fa-step-forward": "\u25b6|", "fa-play": "\u25b6", "fa-pause": "\u25ae\u25ae"}
 
 
+#: what a bidirectional history must hold to be drawn
+SPATIAL_NAMES = ("Xg_x", "Xg_y", *(f"{v}_{c}" for v in ("G2", "axis", "R3") for c in "xyz"), "tilt", "tilt_azimuth",
+                 "rise")
+
+
 class AnimationError(ValueError):
     """Bad input to ``animate``: the message names the value and what is allowed."""
 
@@ -86,7 +91,8 @@ def open_result(path):
     if ds.attrs.get("model") not in MODEL_TITLES:
         raise AnimationError(f"{str(path)!r} is not a dccss result: its global attribute 'model' is "
                              f"{ds.attrs.get('model', 'missing')!r}, expected one of {', '.join(MODEL_TITLES)}")
-    missing = ([] if "t" in ds.dims else ["the time coordinate t"]) + [name for name in Q_NAMES if name not in ds]
+    names = SPATIAL_NAMES if ds.attrs.get("motion") == "bidirectional" else Q_NAMES
+    missing = ([] if "t" in ds.dims else ["the time coordinate t"]) + [name for name in names if name not in ds]
     if missing:
         raise AnimationError(f"{str(path)!r} is not a dccss time history (a breakaway sweep or a study grid?): it "
                              f"lacks {', '.join(missing)}")

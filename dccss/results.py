@@ -152,3 +152,85 @@ def breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs=None) -
                             "breakaway sweep", model="compliant", normals=normals, **geometry_attrs(geometry),
                             **(attrs or {}))
     return ds
+
+
+def _vector(name, values, units, long_name, dims, suffix="", when=""):
+    """Three variables name_x, name_y, name_z of a (T, 3) array."""
+    return {f"{name}_{axis}{suffix}": _var(dims, values[:, i], units, f"{long_name}, {axis} component{when}")
+            for i, axis in enumerate("xyz")}
+
+
+def spatial_dataset(model, history, geometry, times, excitation, *, theta2_0, dt, tol, attrs=None) -> xr.Dataset:
+    """Dataset of one bidirectional case from a history of ``dccss.mechanics.spatial`` (time first):
+    the ground motion, the pad's tilt, tilt azimuth, centre and axis, the rise and horizontal place
+    of RB3, the interpenetration of each step's four section points, the cap-centre gaps, the
+    clearance to each ring and, for stick-slip, the same at the end of each sticking phase."""
+    from .mechanics import spatial
+
+    t = (TIME,)
+    ground, velocity = excitation.displacement(times), excitation.velocity(times)
+    d = spatial.diagnostics(history, geometry)
+    axis = history["Q"][:, :, 2]
+    data = {
+        "Xg_x": _var(t, ground[:, 0], "m", "imposed ground displacement X_g, x component"),
+        "Xg_y": _var(t, ground[:, 1], "m", "imposed ground displacement X_g, y component"),
+        "Xg_dot_x": _var(t, velocity[:, 0], "m s-1", "imposed ground velocity, x component"),
+        "Xg_dot_y": _var(t, velocity[:, 1], "m s-1", "imposed ground velocity, y component"),
+        "tilt": _var(t, np.degrees(d["tilt"]), "degree", "tilt of the pad axis from the vertical"),
+        "tilt_azimuth": _var(t, np.degrees(d["tilt_azimuth"]), "degree",
+                             "azimuth the pad axis leans towards, from x towards y (NaN where the axis is vertical)"),
+        "rise": _var(t, d["rise"], "m", "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
+        **_vector("G2", history["G"], "m", "centre of the pad RB2", t),
+        **_vector("axis", axis, "1", "unit axis of the pad RB2 (up)", t),
+        **_vector("R3", history["R3"], "m", "position of the upper plate RB3", t),
+        "step_azimuth": _var(t, np.degrees(np.arctan2(history["e1"][:, 1], history["e1"][:, 0])), "degree",
+                             "azimuth of the ground increment of the step ending here (the plane pi of the step)"),
+        "gap_1": _var(t, d["gap_1"], "m", "distance between the lower cap centre C21 and the sphere centre C1"),
+        "gap_3": _var(t, d["gap_3"], "m", "distance between the upper cap centre C23 and the sphere centre C3"),
+    }
+    for i, name in enumerate(spatial.RIM_POINTS):
+        data[f"I_{name}"] = _var(t, d["interpenetration"][:, i], "m",
+                                 f"interpenetration at the {name.replace('_', ' ')} rim point of the step's section "
+                                 "(positive into the plate)")
+    for plate in ("1", "3"):
+        data[f"clearance_{plate}"] = _var(t, d[f"clearance_{plate}"], "m",
+                                          f"clearance between the pad and the retaining ring of RB{plate}")
+    beyond = (d["clearance_1"] < 0) | (d["clearance_3"] < 0)
+    data["capacity_exceeded"] = _var(
+        t, beyond.astype(np.int8), "1", "pad beyond a retaining ring",
+        flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="within_capacity capacity_exceeded")
+    stages = "stick_G" in history
+    last = " (its last phase)" if stages else ""
+    data["newton_iterations"] = _var(t, history["newton_iterations"], "1", f"Newton-Raphson iterations of the step{last}")
+    data["newton_residual"] = _var(t, history["residual"], "m", f"final max |constraint residual|{last}")
+    if stages:
+        when = " at the end of the sticking phase"
+        s = spatial.diagnostics(history, geometry, prefix="stick_")
+        data["tilt_stick"] = _var(t, np.degrees(s["tilt"]), "degree", "tilt of the pad axis" + when)
+        data["tilt_azimuth_stick"] = _var(t, np.degrees(s["tilt_azimuth"]), "degree",
+                                          "azimuth the pad axis leans towards" + when)
+        data["rise_stick"] = _var(t, s["rise"], "m", "rise of RB3" + when)
+        data.update(_vector("G2", history["stick_G"], "m", "centre of the pad RB2", t, "_stick", when))
+        data.update(_vector("axis", history["stick_Q"][:, :, 2], "1", "unit axis of the pad RB2", t, "_stick", when))
+        turn = np.full(len(times), np.nan)
+        for k in range(1, len(times)):  # the angle of the rotation of each sticking phase
+            R = history["stick_Q"][k] @ history["Q"][k - 1].T
+            turn[k] = np.degrees(np.arccos(np.clip(0.5 * (np.trace(R) - 1.0), -1.0, 1.0)))
+        data["sticking_rotation"] = _var(t, turn, "degree", "angle the pad turns through in the sticking phase")
+        data["newton_iterations_stick"] = _var(t, history["newton_iterations_stick"], "1",
+                                               "Newton-Raphson iterations of the sticking phase")
+        data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
+                                             "final max |constraint residual| of the sticking phase")
+    title = spatial.REGISTRY[model].title
+    ds = xr.Dataset(data, coords={TIME: time_coordinate(times)})
+    ds.attrs = global_attrs(f"DCCSS kinematics under bidirectional ground motion, {title} model",
+                            f"{title} model, spatial", model=model, motion="bidirectional", normals="signed",
+                            theta2_0_deg=float(np.degrees(theta2_0)), dt_s=float(dt), newton_tol_m=float(tol),
+                            **geometry_attrs(geometry), **excitation.attrs(), **(attrs or {}))
+    ds.attrs["source"] += ", spatial three-rigid-body kinematic model (bidirectional ground motion)"
+    return ds
+
+
+def is_bidirectional(ds) -> bool:
+    """Whether a dccss dataset holds a bidirectional (spatial) history."""
+    return ds.attrs.get("motion") == "bidirectional"

@@ -586,9 +586,22 @@ def diagnostics(history, geometry, prefix="") -> dict:
             centre, radius = (C1[k], dev.R1) if i < 2 else (C3[k], dev.R3)
             interp[k, i] = np.linalg.norm(P - centre) - radius
     out["interpenetration"] = interp
-    out["clearance_1"] = dev.ring1 - _reach(G - dev.B * a, a, dev.A1, R1)
-    out["clearance_3"] = dev.ring3 - _reach(G + dev.B * a, a, dev.A3, R3)
+    out["clearance_1"], out["clearance_3"] = clearances(G, Q, R1, R3, dev)
     return out
+
+
+def clearances(G, Q, R1, R3, dev):
+    """Clearance (m) between the pad and the retaining rings of RB1 and RB3 (negative beyond a ring):
+    R^j sin(alpha^j) minus the largest horizontal distance of the pad's rim on that plate from
+    the plate's axis. G, R1, R3 (..., 3), Q (..., 3, 3)."""
+    a = Q[..., :, 2]
+    return (dev.ring1 - _reach(G - dev.B * a, a, dev.A1, R1), dev.ring3 - _reach(G + dev.B * a, a, dev.A3, R3))
+
+
+def beyond_ring(pose, dev) -> bool:
+    """Whether the pad has passed a retaining ring in ``pose``."""
+    gaps = clearances(pose.G[None], pose.Q[None], pose.R1[None], pose.R3[None], dev)
+    return bool(gaps[0][0] < 0 or gaps[1][0] < 0)
 
 
 def _reach(centre, a, radius, plate):

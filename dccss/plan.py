@@ -1,0 +1,262 @@
+"""Drawing a history in space: plan view, the pad axis's trace, tilt and rise, and sections.
+
+Works on any dccss time history: a bidirectional one (``results.spatial_dataset``) and a planar
+one, read as motion along x (``view``). The section at an instant is the device cut by the
+vertical plane through its pad axis (the plane it leans in), drawn to scale by the planar
+drawing (``drawing._device``): in that plane the pad is tilted by the tilt, and what lies off
+it (a few mm of RB3 after a slip) is projected onto it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from matplotlib.patches import Circle, Polygon
+
+from . import drawing
+from .results import geometry_from_attrs, is_bidirectional
+
+MAX_INSTANTS = 4
+
+
+@dataclass
+class View:
+    """A history in space (SI units, time first): ground (T, 2), pad centre G (T, 3), pad axis (T, 3),
+    RB3 position R3 (T, 3), tilt and its azimuth (T,) (degrees), rise (T,) (m), and the same at the
+    end of sticking (None for compliant sliding)."""
+
+    t: np.ndarray
+    ground: np.ndarray
+    G: np.ndarray
+    axis: np.ndarray
+    R3: np.ndarray
+    tilt: np.ndarray
+    tilt_azimuth: np.ndarray
+    rise: np.ndarray
+    stick: dict | None
+
+
+def _xyz(ds, name, suffix=""):
+    return np.stack([ds[f"{name}_{c}{suffix}"].values for c in "xyz"], axis=-1).astype(float)
+
+
+def view(ds) -> View:
+    """The spatial view of a dataset (a planar one moves along x, its pad tilting in the x-z plane)."""
+    t = ds["t"].values.astype(float)
+    if is_bidirectional(ds):
+        stick = None
+        if "tilt_stick" in ds:
+            stick = {"tilt": ds["tilt_stick"].values, "tilt_azimuth": ds["tilt_azimuth_stick"].values,
+                     "axis": _xyz(ds, "axis", "_stick"), "G": _xyz(ds, "G2", "_stick")}
+        return View(t, np.stack([ds["Xg_x"].values, ds["Xg_y"].values], axis=-1), _xyz(ds, "G2"), _xyz(ds, "axis"),
+                    _xyz(ds, "R3"), ds["tilt"].values, ds["tilt_azimuth"].values, ds["rise"].values, stick)
+    zero = np.zeros_like(t)
+
+    def planar(suffix=""):
+        theta = np.radians(ds["theta2" + suffix].values)
+        axis = np.stack([-np.sin(theta), zero, np.cos(theta)], axis=-1)
+        tilt = np.degrees(np.abs(theta))
+        azimuth = np.where(theta > 0, 180.0, np.where(theta < 0, 0.0, np.nan))
+        G = np.stack([ds["Rx2" + suffix].values, zero, ds["Ry2" + suffix].values], axis=-1)
+        return axis, tilt, azimuth, G
+
+    axis, tilt, azimuth, G = planar()
+    stick = None
+    if "theta2_stick" in ds:
+        a, ti, az, Gs = planar("_stick")
+        stick = {"tilt": ti, "tilt_azimuth": az, "axis": a, "G": Gs}
+    R3 = np.stack([ds["Rx3"].values, zero, ds["Ry3"].values], axis=-1)
+    return View(t, np.stack([ds["Xg"].values, zero], axis=-1), G, axis, R3, tilt, azimuth, ds["rise"].values, stick)
+
+
+def section_q(v: View, n, g, stick=False) -> dict:
+    """Planar coordinates (m, degrees) of the device at step n in the vertical plane of its pad axis:
+    RB1, the pad and RB3 projected on that plane, the pad turned by -tilt (it leans along +h)."""
+    axis = v.stick["axis"][n] if stick else v.axis[n]
+    G = v.stick["G"][n] if stick else v.G[n]
+    lean = np.hypot(axis[0], axis[1])
+    h = axis[:2] / lean if lean > 0 else np.array([1.0, 0.0])
+    tilt = np.degrees(np.arctan2(lean, axis[2]))
+    return {"Rx1": float(v.ground[n] @ h), "Ry1": 0.0, "theta1": 0.0, "Rx2": float(G[:2] @ h), "Ry2": float(G[2]),
+            "theta2": -float(tilt), "Rx3": float(v.R3[n, :2] @ h), "Ry3": float(v.R3[n, 2]), "theta3": 0.0}
+
+
+def rim(centre, axis, radius, k=73):
+    """Plan view (k, 2) of a rim circle (centre (3,), normal ``axis``) of the pad."""
+    helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    w = np.cross(axis, u)
+    beta = np.linspace(0.0, 2 * np.pi, k)
+    return (centre[None, :] + radius * (np.cos(beta)[:, None] * u + np.sin(beta)[:, None] * w))[:, :2]
+
+
+def draw_plan(ax, v: View, g, n, *, history=True, colour="tab:orange"):
+    """Plan view at step n (cm): the rings of RB1 (moving with the ground) and RB3, the pad's two rims
+    and, with ``history``, the ground path and the pad centre's path up to n."""
+    if history:
+        ax.plot(100 * v.ground[: n + 1, 0], 100 * v.ground[: n + 1, 1], color="0.55", lw=0.9, label="ground $X_g$")
+        ax.plot(100 * v.G[: n + 1, 0], 100 * v.G[: n + 1, 1], color=colour, lw=1.1, label="pad centre $G^2$")
+    ring1, ring3 = (float(r) for r in g.ring_inner_x)
+    ax.add_patch(Circle(100 * v.ground[n], 100 * ring1, fill=False, ec="0.35", lw=1.0))
+    ax.add_patch(Circle(100 * v.R3[n, :2], 100 * ring3, fill=False, ec="0.35", ls="--", lw=1.0))
+    a = v.axis[n]
+    for sign, radius in ((-1.0, float(g.A1)), (1.0, float(g.A3))):
+        ax.add_patch(Polygon(100 * rim(v.G[n] + sign * float(g.B) * a, a, radius), closed=True, fc=drawing.PAD_COLOUR,
+                             ec="k", lw=0.6, alpha=0.5))
+    ax.plot(*(100 * v.ground[n]), "+", color="0.35", ms=7)
+    ax.plot(*(100 * v.R3[n, :2]), "x", color="0.35", ms=6)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (cm)")
+    ax.set_ylabel("y (cm)")
+
+
+def draw_axis_trace(ax, v: View, n=None):
+    """The pad axis's trace: the tilt vector (tilt cos azimuth, tilt sin azimuth) in degrees, up to n."""
+    end = len(v.t) if n is None else n + 1
+
+    def vec(tilt, azimuth):
+        az = np.radians(np.nan_to_num(azimuth))
+        return tilt * np.cos(az), tilt * np.sin(az)
+
+    if v.stick is not None:
+        ax.plot(*vec(v.stick["tilt"][1:end], v.stick["tilt_azimuth"][1:end]), color="crimson", lw=0.5, alpha=0.7,
+                label="end of sticking")
+    ax.plot(*vec(v.tilt[:end], v.tilt_azimuth[:end]), color="tab:blue", lw=1.2, label="end of step")
+    ax.plot(0, 0, "+", color="k", ms=6)
+    ax.set_aspect("equal")
+    ax.set_xlabel("tilt towards x (deg)")
+    ax.set_ylabel("tilt towards y (deg)")
+
+
+def draw_traces(ax, v: View):
+    """Tilt (deg, left axis) and rise of RB3 (cm, right axis) against time."""
+    ax.plot(v.t, v.tilt, color="tab:blue", lw=1.2, label="tilt")
+    if v.stick is not None:
+        ax.plot(v.t[1:], v.stick["tilt"][1:], color="crimson", lw=0.5, alpha=0.7, label="tilt, end of sticking")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("tilt (deg)", color="tab:blue")
+    right = ax.twinx()
+    right.plot(v.t, 100 * v.rise, color="tab:green", lw=1.0, ls="--", label="rise of RB3")
+    right.set_ylabel("rise (cm)", color="tab:green")
+    return right
+
+
+def draw_section(ax, v: View, g, n, shapes=None):
+    """The device to scale in the vertical plane of its pad axis at step n (cm); returns its points."""
+    shapes = shapes or drawing._shapes(g)
+    q = section_q(v, n, g)
+    points = drawing._device(ax, g, q, shapes)
+    if v.stick is not None and n > 0:
+        drawing._device(ax, g, section_q(v, n, g, stick=True), shapes, colour="crimson", fill=False, lw=0.6)
+    ax.set_aspect("equal")
+    return points
+
+
+def instants(v: View, at=None) -> list[int]:
+    """Step indices of the instants to draw: the steps nearest to the times ``at`` (s), or by default
+    the largest tilt and the last step."""
+    if at is None:
+        return sorted({int(np.nanargmax(v.tilt)), len(v.t) - 1})
+    at = list(np.atleast_1d(np.asarray(at, dtype=float)))
+    if not 1 <= len(at) <= MAX_INSTANTS:
+        raise ValueError(f"give 1 to {MAX_INSTANTS} instants, got {len(at)}")
+    for when in at:
+        if not (np.isfinite(when) and v.t[0] - 1e-12 <= when <= v.t[-1] + 1e-12):
+            raise ValueError(f"instant {float(when):g} s is outside the history ({v.t[0]:g} .. {v.t[-1]:g} s)")
+    return [int(np.argmin(np.abs(v.t - when))) for when in at]
+
+
+def figure(ds, at=None, title=None):
+    """The summary figure of a history: plan view, the pad axis's trace, tilt and rise against time,
+    and the section at each instant (``instants``). Returns the frozen Figure."""
+    g = geometry_from_attrs(ds.attrs)
+    v = view(ds)
+    steps = instants(v, at)
+    fig = drawing._figure((11.0, 8.6), nrows=None)
+    grid = fig.add_gridspec(3, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0))
+    plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
+    trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
+    draw_plan(plan, v, g, steps[-1])
+    plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
+    drawing._legend(plan, fontsize=8, loc="best")
+    draw_axis_trace(trace, v)
+    trace.set_title("(b) trace of the pad axis", fontsize=9)
+    trace.legend(fontsize=8, loc="best")
+    traces = fig.add_subplot(grid[1, :])
+    right = draw_traces(traces, v)
+    for n in steps:
+        traces.axvline(v.t[n], color="0.5", lw=0.7, ls=":")
+    traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9)
+    drawing._legend(traces, right, fontsize=8, loc="upper right")
+    shapes = drawing._shapes(g)
+    for k, n in enumerate(steps):
+        ax = fig.add_subplot(grid[2, k])
+        points = draw_section(ax, v, g, n, shapes)
+        drawing._frame(ax, points, margin=2.0)
+        azimuth = v.tilt_azimuth[n]
+        plane = f", leaning towards {azimuth:.0f} deg" if np.isfinite(azimuth) else ""
+        ax.set_title(f"({chr(100 + k)}) t = {v.t[n]:.3g} s: tilt {v.tilt[n]:.2f} deg{plane}", fontsize=9)
+        ax.set_xlabel("along the lean (cm)")
+        ax.set_ylabel("z (cm)")
+    motion = "bidirectional" if is_bidirectional(ds) else "unidirectional (x)"
+    drawing.caption_line(fig, title or (f"{ds.attrs.get('title', 'dccss history')}: {motion} ground motion; "
+                                        "sections in the vertical plane of the pad axis, end of sticking in red"))
+    drawing.freeze(fig)
+    return fig
+
+
+# --- command line ------------------------------------------------------------------------------
+def plot(path, output, at=None) -> str:
+    """Write the summary figure of a result history to ``output`` (.png or .pdf); returns a one-line
+    summary. Errors (``animation.AnimationError``) name the file or value; nothing is written then."""
+    from pathlib import Path
+
+    from .animation import AnimationError, open_result
+    from .files import write_atomic
+
+    suffix = Path(output).suffix.lower()
+    if suffix not in (".png", ".pdf"):
+        raise AnimationError(f"output {str(output)!r}: unknown extension {Path(output).suffix or '(none)'!r}, "
+                             "expected .png or .pdf")
+    ds = open_result(path)
+    try:
+        fig = figure(ds, at)
+    except ValueError as err:
+        raise AnimationError(f"--at: {err}") from None
+    metadata = drawing.PNG_METADATA if suffix == ".png" else drawing.PDF_METADATA
+    write_atomic(output, lambda f: fig.savefig(f, format=suffix[1:], dpi=drawing.DPI, metadata=metadata))
+    steps = ", ".join(f"{ds['t'].values[n]:g} s" for n in instants(view(ds), at))
+    return f"{output}: {ds.sizes['t'] - 1} steps, sections at {steps}"
+
+
+def add_parser(subparsers):
+    """The ``plot`` sub-command."""
+    p = subparsers.add_parser("plot", help="draw a result history: plan, pad axis trace, tilt, rise and sections",
+                              description="Draw a dccss result history (bidirectional or planar): the plan view "
+                                          "with the ground path, the pad axis's trace, tilt and rise against time, "
+                                          "and the device cut by the vertical plane of its pad axis at chosen "
+                                          "instants.")
+    p.add_argument("result", help="dccss result netCDF file (a time history)")
+    p.add_argument("-o", "--output", required=True, help="OUT.png or OUT.pdf")
+    p.add_argument("--at", type=float, nargs="+", metavar="T",
+                   help=f"instants of the sections (s), 1 to {MAX_INSTANTS} (default: the largest tilt and the end)")
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    p.set_defaults(handler=_command)
+    return p
+
+
+def _command(args) -> int:
+    import sys
+
+    from .animation import AnimationError
+
+    try:
+        line = plot(args.result, args.output, args.at)
+    except AnimationError as err:
+        print(f"dccss plot: error: {err}", file=sys.stderr)
+        return 2
+    if not args.quiet:
+        print(f"dccss plot: wrote {line}")
+    return 0
