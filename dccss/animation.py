@@ -613,7 +613,7 @@ def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=""):
     fig.clear()
     if fig.canvas is None or not hasattr(fig.canvas, "copy_from_bbox"):
         FigureCanvasAgg(fig)
-    scene = Scene(fig, ds, np.union1d(frames, [n]), exaggeration, name)
+    scene = _scene(ds)(fig, ds, np.union1d(frames, [n]), exaggeration, name)
     scene.show(n)
     return scene
 
@@ -756,13 +756,22 @@ def animate(path, output, *, start=None, end=None, fps=10, max_frames=MAX_FRAMES
     return summary(output, ds, idx, k, fps)
 
 
+def _scene(ds):
+    """The scene class of a history: the planar device, or the spatial view of a bidirectional one."""
+    if ds.attrs.get("motion") == "bidirectional":
+        from .plan import Scene as SpatialScene
+
+        return SpatialScene
+    return Scene
+
+
 def _render(ds, idx, output, suffix, fps, exaggeration, name):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=FIGSIZE, dpi=DPI)
     FigureCanvasAgg(fig)
-    blit = _Blitter(Scene(fig, ds, idx, exaggeration, name), int(idx[0]))
+    blit = _Blitter(_scene(ds)(fig, ds, idx, exaggeration, name), int(idx[0]))
     palette = _palette([blit(int(n)) for n in idx[np.linspace(0, idx.size - 1, min(idx.size, 6)).astype(int)]])
     writer = _writer_classes()[suffix](fps=fps, palette=palette)
     with tempfile.TemporaryDirectory(prefix="dccss-animate-") as tmp:

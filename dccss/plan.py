@@ -123,8 +123,20 @@ def draw_axis_trace(ax, v: View, n=None):
     if v.stick is not None:
         ax.plot(*vec(v.stick["tilt"][1:end], v.stick["tilt_azimuth"][1:end]), color="crimson", lw=0.5, alpha=0.7,
                 label="end of sticking")
-    ax.plot(*vec(v.tilt[:end], v.tilt_azimuth[:end]), color="tab:blue", lw=1.2, label="end of step")
+    x, y = vec(v.tilt[:end], v.tilt_azimuth[:end])
+    ax.plot(x, y, color="tab:blue", lw=1.2, label="end of step")
     ax.plot(0, 0, "+", color="k", ms=6)
+    # square limits around the whole trace and the origin (a planar trace has no y extent)
+    whole = [vec(v.tilt, v.tilt_azimuth)]
+    if v.stick is not None:
+        whole.append(vec(v.stick["tilt"][1:], v.stick["tilt_azimuth"][1:]))
+    xs = np.concatenate([[0.0]] + [tx for tx, _ in whole])
+    ys = np.concatenate([[0.0]] + [ty for _, ty in whole])
+    lo, hi = np.array([np.nanmin(xs), np.nanmin(ys)]), np.array([np.nanmax(xs), np.nanmax(ys)])
+    half = 0.55 * max(float((hi - lo).max()), 0.02)
+    mid = 0.5 * (lo + hi)
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_aspect("equal")
     ax.set_xlabel("tilt towards x (deg)")
     ax.set_ylabel("tilt towards y (deg)")
@@ -260,3 +272,109 @@ def _command(args) -> int:
     if not args.quiet:
         print(f"dccss plot: wrote {line}")
     return 0
+
+
+# --- animation -----------------------------------------------------------------------------------
+class Scene:
+    """One step of a history at a time, in space (``dccss animate`` on a bidirectional history): the
+    plan view (left), the section in the vertical plane of the pad axis (right, the end of sticking in
+    red), the pad axis's trace and tilt and rise against time with a cursor (below). The interface of
+    ``animation.Scene``: ``show(n)`` and ``dynamic``; ``frames`` fix the limits."""
+
+    def __init__(self, fig, ds, frames, exaggeration=None, name=""):
+        from .animation import FIGSIZE, _notes
+
+        self.fig, self.ds = fig, ds
+        self.g = g = geometry_from_attrs(ds.attrs)
+        self.v = v = view(ds)
+        self.shapes = drawing._shapes(g)
+        self.dynamic = []
+        frames = np.asarray(frames, dtype=int)
+        fig.set_size_inches(*FIGSIZE)
+        grid = fig.add_gridspec(2, 3, height_ratios=(1.6, 1.0), left=0.06, right=0.94, top=0.9, bottom=0.1,
+                                wspace=0.3, hspace=0.3)
+        plan = self.plan = fig.add_subplot(grid[0, 0])
+        section = self.section = fig.add_subplot(grid[0, 1:])
+        trace = fig.add_subplot(grid[1, 0])
+        traces = self.traces = fig.add_subplot(grid[1, 1:])
+        # plan: fixed limits around every ring and path of the shown steps
+        ring1, ring3 = (float(r) for r in g.ring_inner_x)
+        lo = np.minimum((v.ground[frames] - ring1).min(axis=0), (v.R3[frames, :2] - ring3).min(axis=0))
+        hi = np.maximum((v.ground[frames] + ring1).max(axis=0), (v.R3[frames, :2] + ring3).max(axis=0))
+        span = 100 * (hi - lo).max() / 2 + 2.0
+        mid = 50 * (hi + lo)
+        plan.set_xlim(mid[0] - span, mid[0] + span)
+        plan.set_ylim(mid[1] - span, mid[1] + span)
+        plan.set_aspect("equal")
+        plan.set_xlabel("x (cm)")
+        plan.set_ylabel("y (cm)")
+        plan.set_title("plan: rings of RB1 (solid), RB3 (dashed)", fontsize=9)
+        self.ground_path = self._add(plan.plot([], [], color="0.55", lw=0.9, label="ground $X_g$")[0])
+        self.pad_path = self._add(plan.plot([], [], color="tab:orange", lw=1.1, label="pad centre")[0])
+        self.rings = [self._add(plan.add_patch(Circle((0, 0), 100 * r, fill=False, ec="0.35", lw=1.0, ls=ls)))
+                      for r, ls in ((ring1, "-"), (ring3, "--"))]
+        self.rims = [self._add(plan.add_patch(Polygon(np.zeros((2, 2)), closed=True, fc=drawing.PAD_COLOUR, ec="k",
+                                                      lw=0.6, alpha=0.5))) for _ in range(2)]
+        plan.legend(fontsize=7, loc="upper right")
+        # section: the device in the plane of its pad axis, limits over the shown steps
+        points = []
+        for n in frames:
+            q = section_q(v, int(n), g)
+            points.append(np.vstack([100 * drawing._pose(self.shapes[i], *drawing._body(q, i)) for i in (1, 2, 3)]))
+        points = np.vstack(points)
+        drawing._frame(section, points, margin=2.0)
+        section.set_xlabel("along the lean of the pad axis (cm)")
+        section.set_ylabel("z (cm)")
+        self.bodies = {i: self._add(section.add_patch(Polygon(np.zeros((2, 2)), closed=True, ec="k", lw=0.8,
+                                                              fc=drawing.PAD_COLOUR if i == 2 else drawing.PLATE_COLOUR,
+                                                              alpha=0.85 if i == 2 else 1.0)))
+                       for i in (1, 3, 2)}
+        self.sticks = {}
+        if v.stick is not None:
+            self.sticks = {i: self._add(section.add_patch(Polygon(np.zeros((2, 2)), closed=True, fill=False,
+                                                                  ec="crimson", lw=0.9 if i == 2 else 0.5)))
+                           for i in (1, 3, 2)}
+        self.line = self._add(section.plot([], [], color="0.3", ls=":", lw=0.9)[0])
+        # the axis trace and the time traces, with cursors
+        draw_axis_trace(trace, v)
+        trace.set_title("trace of the pad axis", fontsize=9)
+        self.tip = self._add(trace.plot([], [], "o", color="tab:blue", ms=5)[0])
+        right = draw_traces(traces, v)
+        drawing._legend(traces, right, fontsize=7, loc="upper right")
+        self.cursor = self._add(traces.axvline(v.t[0], color="crimson", lw=1.0))
+        title = ds.attrs.get("title", "dccss history")
+        fig.suptitle(f"{title}{' - ' + name if name else ''}", fontsize=10)
+        self.status = self._add(fig.text(0.5, 0.935, "", ha="center", fontsize=9))
+        notes = _notes(ds.attrs)
+        if notes:
+            fig.text(0.5, 0.01, notes, ha="center", va="bottom", fontsize=7, color="crimson")
+
+    def _add(self, artist):
+        self.dynamic.append(artist)
+        return artist
+
+    def show(self, n):
+        v, g = self.v, self.g
+        self.ground_path.set_data(100 * v.ground[: n + 1, 0], 100 * v.ground[: n + 1, 1])
+        self.pad_path.set_data(100 * v.G[: n + 1, 0], 100 * v.G[: n + 1, 1])
+        self.rings[0].set_center(100 * v.ground[n])
+        self.rings[1].set_center(100 * v.R3[n, :2])
+        a = v.axis[n]
+        for rim_patch, (sign, radius) in zip(self.rims, ((-1.0, float(g.A1)), (1.0, float(g.A3)))):
+            rim_patch.set_xy(100 * rim(v.G[n] + sign * float(g.B) * a, a, radius))
+        q = section_q(v, n, g)
+        for i, patch in self.bodies.items():
+            patch.set_xy(100 * drawing._pose(self.shapes[i], *drawing._body(q, i)))
+        for i, patch in self.sticks.items():
+            visible = n > 0 and np.isfinite(v.stick["tilt"][n])
+            patch.set_visible(bool(visible))
+            if visible:
+                patch.set_xy(100 * drawing._pose(self.shapes[i], *drawing._body(section_q(v, n, g, stick=True), i)))
+        c1 = 100 * drawing._pose(g.circle_centres[0], *drawing._body(q, 1))
+        c3 = 100 * drawing._pose(g.circle_centres[1], *drawing._body(q, 3))
+        self.line.set_data([c1[0], c3[0]], [c1[1], c3[1]])
+        az = np.radians(np.nan_to_num(v.tilt_azimuth[n]))
+        self.tip.set_data([v.tilt[n] * np.cos(az)], [v.tilt[n] * np.sin(az)])
+        self.cursor.set_xdata([v.t[n], v.t[n]])
+        lean = f", leaning towards {v.tilt_azimuth[n]:.0f} deg" if np.isfinite(v.tilt_azimuth[n]) else ""
+        self.status.set_text(f"t = {v.t[n]:.3f} s   tilt {v.tilt[n]:.3f} deg{lean}   rise {100 * v.rise[n]:.3f} cm")
