@@ -22,7 +22,11 @@ Format (lengths in m, angles in degrees, times in s)::
                 #     units: ..}  a record pair (dccss.records.RecordPair): both files processed as
                 #     one record, each with its own units header; their sample times after the
                 #     window must be equal (same dt and npts; never resampled)
-                # a two-component table or record pair takes no `azimuth`
+                # a two-component table or record pair takes no `azimuth`, but may take
+                #   `component: x` (or y: the other held at zero) or `both` (the default), to run
+                #   the same input unidirectionally and bidirectionally
+                # Two-component input runs the spatial models (dccss.mechanics.spatial); the dataset
+                # then holds Xg_x, Xg_y, tilt, tilt_azimuth, rise, the pad centre and axis
     theta2_0: 0.0          # optional, default 0
     dt: 0.01
     model: compliant       # or stick_slip
@@ -45,7 +49,7 @@ import numpy as np
 import yaml
 
 from .checks import ON_FAILURE, CaseError, check_keys, choice, number
-from .excitation import Oriented, Scaled, Sine, check_step, read_table
+from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
@@ -58,8 +62,8 @@ REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
             "on_failure": "stop"}
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
-EXCITATION_OPTIONAL = {"sine": ("scale", "azimuth"), "table": ("scale", "azimuth"),
-                       "record": ("scale", "window", "baseline", "units", "azimuth")}
+EXCITATION_OPTIONAL = {"sine": ("scale", "azimuth"), "table": ("scale", "azimuth", "component"),
+                       "record": ("scale", "window", "baseline", "units", "azimuth", "component")}
 
 
 def geometry_from(value, key="prototype") -> Geometry:
@@ -84,6 +88,17 @@ def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):
         raise CaseError(f"{key}: expected a mapping, got {type(value).__name__} {value!r}")
     kind = choice(value.get("kind"), f"{key}.kind", EXCITATION_KEYS)
     check_keys(value, key, ("kind",) + EXCITATION_KEYS[kind], EXCITATION_OPTIONAL.get(kind, ()))
+    excitation = _excitation(value, kind, base, geometry, key)
+    if "component" not in value:
+        return excitation
+    which = choice(value["component"], f"{key}.component", COMPONENTS)
+    try:
+        return Component(excitation, which)
+    except ValueError as err:
+        raise CaseError(f"{key}.component: {str(err).split(': ', 1)[-1]}") from None
+
+
+def _excitation(value, kind, base, geometry, key):
     azimuth = number(value["azimuth"], f"{key}.azimuth") if "azimuth" in value else None
     if kind == "record":
         if azimuth is not None and isinstance(value["file"], list):

@@ -331,6 +331,62 @@ class Oriented:
                 "excitation_azimuth_deg": self.azimuth_deg}
 
 
+#: the components of a two-component excitation a case may keep (``Component``)
+COMPONENTS = ("x", "y", "both")
+
+
+@dataclass(frozen=True)
+class Component:
+    """One component of a two-component excitation, the other held at zero (``which``: "x" or
+    "y"), or both ("both"): the same record pair or table run unidirectionally and
+    bidirectionally, with the same spatial model and outputs. Along y the reference azimuth (the
+    direction of a zero increment) is 90 degrees, along x 0."""
+
+    excitation: object
+    which: str
+    components = 2
+
+    def __post_init__(self):
+        if getattr(self.excitation, "components", 1) != 2:
+            raise ValueError("excitation.component: keeps a component of a two-component excitation (a record pair "
+                             "or a time, x, y table); this one has one component")
+        if self.which not in COMPONENTS:
+            raise ValueError(f"excitation.component: expected one of {list(COMPONENTS)}, got {self.which!r}")
+
+    @property
+    def kind(self):
+        return self.excitation.kind
+
+    @property
+    def parameters(self):
+        return self.excitation.parameters
+
+    @property
+    def azimuth(self) -> float:
+        return {"x": 0.0, "y": float(np.pi / 2), "both": float(self.excitation.azimuth)}[self.which]
+
+    @property
+    def t_start(self):
+        return self.excitation.t_start
+
+    @property
+    def t_end(self):
+        return self.excitation.t_end
+
+    @property
+    def mask(self) -> np.ndarray:
+        return np.array([self.which != "y", self.which != "x"], dtype=float)
+
+    def displacement(self, t, **parameters):
+        return self.excitation.displacement(t, **parameters) * self.mask
+
+    def velocity(self, t, **parameters):
+        return self.excitation.velocity(t, **parameters) * self.mask
+
+    def attrs(self) -> dict:
+        return {**self.excitation.attrs(), "excitation_component": self.which}
+
+
 @dataclass(frozen=True)
 class Scaled:
     """An excitation multiplied by a constant ``factor`` (X_g and its velocity; both components

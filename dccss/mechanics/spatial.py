@@ -622,3 +622,84 @@ def _reach(centre, a, radius, plate):
     u /= np.linalg.norm(u, axis=-1, keepdims=True)
     reach = [np.hypot(*(offset + s * radius * u)[..., :2].T) for s in (-1.0, 1.0)]
     return np.maximum(*reach)
+
+
+# --- sweeps ------------------------------------------------------------------------------------
+def _case_geometry(geometry, k, n):
+    from .geometry import Geometry
+
+    return Geometry(**{f.name: float(np.broadcast_to(getattr(geometry, f.name), (n,))[k]) for f in fields(geometry)})
+
+
+def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="continue", progress=None,
+              options=NewtonOptions(), times=None) -> dict:
+    """Per-case summaries of a batch of bidirectional cases, with the keys and conventions of
+    ``dccss.studies.sweep.summarize`` (one case after another: histories in space are not batched).
+
+    Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,). Under bidirectional motion
+    |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and ``theta2_end`` the residual
+    tilt (>= 0); the corners A, B, C, D are the trailing and leading rim points of each step's
+    section on RB1 and on RB3 (for motion along +x, the planar corners); ``sticking_rotation_max``
+    is the largest angle the pad turns through in a sticking phase."""
+    from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
+
+    if capacity not in CAPACITY_POLICIES:
+        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
+    Xg = np.asarray(Xg, dtype=float)
+    if Xg.ndim != 3 or Xg.shape[-1] != 2:
+        raise ValueError(f"Xg must have shape (T, n, 2), got {Xg.shape}")
+    T, n = Xg.shape[:2]
+    now = np.asarray(times, dtype=float) if times is not None else np.arange(T, dtype=float)
+    theta2_0 = np.broadcast_to(np.asarray(theta2_0, dtype=float), (n,))
+    azimuth = np.broadcast_to(np.asarray(azimuth, dtype=float), (n,))
+    keys = ["theta2_max_abs", "theta2_end", "rise_max", "rise_end", "clearance_min", "I_A_max", "I_B_max", "I_C_max",
+            "I_D_max", "newton_iterations_mean"] + (["sticking_rotation_max", "rise_stick_max"] if model == "stick_slip"
+                                                    else [])
+    out = {k: np.full(n, np.nan) for k in keys}
+    out["newton_iterations_max"] = np.zeros(n, dtype=np.int32)
+    failure, reached = np.full(n, np.nan), np.full(n, np.nan)
+    for k in range(n):
+        g = _case_geometry(geometry, k, n)
+        dev = Device.of(g)
+        records = []
+        try:
+            for step in steps(model, g, Xg[:, k], float(theta2_0[k]), azimuth=float(azimuth[k]), options=options,
+                              times=times):
+                records.append(step)
+                if beyond_ring(step.pose, dev):
+                    if np.isnan(reached[k]):
+                        reached[k] = now[step.n]
+                        if capacity == "error" and options.on_failure != "mark":
+                            err = CapacityError(f"the pad reaches a retaining ring at t = {now[step.n]:.6g} s in the "
+                                                f"case at batch index {(k,)} (capacity: error)")
+                            err.index = (k,)
+                            raise err
+                    if capacity != "continue":
+                        break
+        except ConvergenceError as err:
+            if options.on_failure != "mark":
+                err.index = (k,)
+                raise
+            failure[k] = now[len(records)]
+        if progress is not None:
+            progress(T - 1, T - 1)
+        if not records:
+            continue
+        h = collect(records)
+        d = diagnostics(h, g)
+        tilt = np.degrees(d["tilt"])
+        out["theta2_max_abs"][k], out["theta2_end"][k] = tilt.max(), tilt[-1]
+        out["rise_max"][k], out["rise_end"][k] = d["rise"].max(), d["rise"][-1]
+        out["clearance_min"][k] = min(d["clearance_1"].min(), d["clearance_3"].min())
+        for i, c in enumerate("ABCD"):
+            out[f"I_{c}_max"][k] = np.nanmax(d["interpenetration"][1:, i]) if len(records) > 1 else np.nan
+        its = h["newton_iterations"] + h.get("newton_iterations_stick", 0)
+        out["newton_iterations_max"][k] = its.max()
+        out["newton_iterations_mean"][k] = its.sum() / max(len(records) - 1, 1)
+        if model == "stick_slip" and len(records) > 1:
+            turn = [np.arccos(np.clip(0.5 * (np.trace(h["stick_Q"][j] @ h["Q"][j - 1].T) - 1.0), -1.0, 1.0))
+                    for j in range(1, len(records))]
+            out["sticking_rotation_max"][k] = np.degrees(max(turn))
+            out["rise_stick_max"][k] = np.nanmax(h["stick_R3"][1:, 2] - dev.rest3)
+    out["capacity_exceeded"] = ~np.isnan(reached)
+    return mark_failures(out, failure, reached, capacity)

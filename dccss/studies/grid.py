@@ -45,7 +45,8 @@ class Grid:
 
     def point(self, case) -> dict:
         """{axis: value} of one case (str for prototype names, float otherwise)."""
-        return {k: (str(v[0]) if k == "prototype" else float(v[0])) for k, v in self.values(np.array([case])).items()}
+        return {k: (str(v[0]) if k in ("prototype", "component") else float(v[0]))
+                for k, v in self.values(np.array([case])).items()}
 
     def geometry(self, cases) -> Geometry:
         """The devices of the cases, as one batched Geometry."""
@@ -67,14 +68,33 @@ class Grid:
         """The initial pad rotation of each case (rad)."""
         return np.radians(self.values(cases).get("theta2_0", np.full(len(cases), self.study.theta2_0)))
 
+    def azimuth_of(self, cases) -> np.ndarray:
+        """The reference azimuth of each case of a bidirectional study (rad): the direction its
+        spatial model gives a zero ground increment (``excitation.azimuth`` of that case)."""
+        excitation, values = self.study.excitation, self.values(cases)
+        if "azimuth" in values:
+            return np.radians(values["azimuth"])
+        base = np.full(len(cases), float(excitation.azimuth))
+        if "component" in values:
+            return np.where(values["component"] == "y", np.pi / 2, np.where(values["component"] == "x", 0.0, base))
+        return base
+
     def times(self, dt) -> np.ndarray:
         """The step times at step size dt (s)."""
         return step_times(self.study.excitation, dt)
 
     def ground_motion(self, cases, t) -> np.ndarray:
-        """X_g (T, n) of the cases at the step times t: the excitation evaluates its own swept
-        parameters for the batch; ``scale`` multiplies the result."""
+        """X_g (T, n) of the cases at the step times t, or (T, n, 2) for a bidirectional excitation:
+        the excitation evaluates its own swept parameters for the batch; ``scale`` multiplies the
+        result, ``component`` keeps x, y or both."""
         excitation, values = self.study.excitation, self.values(cases)
         own = {k: values[k] for k in excitation.parameters if k in values}
         Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
-        return np.broadcast_to(Xg, (len(t), len(cases))) * values.get("scale", 1.0)
+        scale = values.get("scale", np.ones(len(cases)))
+        if excitation.components == 1:
+            return np.broadcast_to(Xg, (len(t), len(cases))) * scale
+        Xg = np.broadcast_to(Xg, (len(t), len(cases), 2)) * scale[:, None]
+        if "component" in values:
+            keep = np.stack([values["component"] != "y", values["component"] != "x"], axis=-1)
+            Xg = Xg * keep
+        return Xg

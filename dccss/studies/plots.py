@@ -64,7 +64,7 @@ HISTORY_ROWS = [
     ("interpenetration", "max $|I|$ of the corners", 1e3, "mm"),
 ]
 AXIS_SYMBOLS = {"amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$", "theta2_0": "$θ^2(t_0)$",
-                "dt": "Δt", "prototype": "prototype"}
+                "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$", "component": "component of $X_g$"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
@@ -176,25 +176,29 @@ def histories(points: list, caption: str) -> Figure:
     for k, (label, runs) in enumerate(points):
         block, c = divmod(k, POINTS_PER_ROW)
         col = axs[rows * block:rows * (block + 1), c]
-        _share_time(col, ylabels=c == 0)
+        _share_time(col, ylabels=c == 0, spatial=any(_bidirectional(ds) for ds in runs.values()))
         events |= _history_column(col, f"({_letter(k)}) {label}", runs, models)
     for ax in _unused(axs, len(points), rows):
         ax.set_visible(False)
     lines = [Line2D([], [], color="k", lw=1.2, label="$X_g$, imposed ground motion")]
+    if any(_bidirectional(ds) for _, runs in points for ds in runs.values()):
+        lines = [Line2D([], [], color="k", lw=1.2, label="$X_{g,x}$"),
+                 Line2D([], [], color="k", lw=1.2, ls="--", label="$X_{g,y}$")]
     lines += [Line2D([], [], **_line(m, models), label=_title(m)) for m in models]
     return _complete(fig, "Time histories at the study's history points", caption, [lines, _event_handles(events)])
 
 
-def _share_time(col, ylabels):
-    """One time axis for the panels of a point, labelled at the bottom; quantities on the left."""
+def _share_time(col, ylabels, spatial=False):
+    """One time axis for the panels of a point, labelled at the bottom; quantities on the left (the
+    tilt for θ² under bidirectional motion)."""
     for ax in col[1:]:
         ax.sharex(col[0])
     for ax in col[:-1]:
         ax.tick_params(labelbottom=False)
     col[-1].set_xlabel("t (s)")
     if ylabels:
-        for ax, (_, name, _, unit) in zip(col, HISTORY_ROWS):
-            ax.set_ylabel(f"{name} ({unit})")
+        for ax, (key, name, _, unit) in zip(col, HISTORY_ROWS):
+            ax.set_ylabel(f"{'tilt of the pad' if spatial and key == 'theta2' else name} ({unit})")
 
 
 def _unused(axs, n, rows):
@@ -211,7 +215,11 @@ def _letter(k):
 def _history_column(col, label, runs, models):
     """Draw one history point in a column of axes; return the kinds of events drawn."""
     ground = max(runs.values(), key=lambda ds: ds.sizes["t"])
-    col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground["Xg"].values, color="k", lw=1.2)
+    if _bidirectional(ground):  # x solid, y dashed
+        for name, ls in (("Xg_x", "-"), ("Xg_y", "--")):
+            col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground[name].values, color="k", lw=1.2, ls=ls)
+    else:
+        col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground["Xg"].values, color="k", lw=1.2)
     events, notes = set(), []
     for slot, model in enumerate(m for m in models if m in runs):
         ds, style = runs[model], _line(model, models)
@@ -237,10 +245,19 @@ def _history_column(col, label, runs, models):
     return events
 
 
+def _bidirectional(ds):
+    return ds.attrs.get("motion") == "bidirectional"
+
+
 def _history_values(ds, name):
-    """A history row's values in SI units; "interpenetration" is the largest |I| of the corners A..D."""
+    """A history row's values in SI units; "interpenetration" is the largest |I| of the corners A..D
+    (of the rim points of each step's section, bidirectional); θ² of a bidirectional history is its
+    tilt."""
     if name == "interpenetration":
-        return np.max(np.abs([ds[f"I_{c}"].values for c in "ABCD"]), axis=0)
+        names = [v for v in ds.data_vars if v.startswith("I_") and not v.endswith("_stick")]
+        return np.max(np.abs([ds[v].values for v in names]), axis=0)
+    if name == "theta2" and _bidirectional(ds):
+        return ds["tilt"].values
     return ds[name].values
 
 

@@ -7,6 +7,7 @@ import xarray as xr
 
 from ..case import Case, case_from
 from ..checks import ON_FAILURE
+from ..mechanics import spatial
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
@@ -28,10 +29,15 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         mine = dts == dt
         group, times = cases[mine], grid.times(dt)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
+        ground = grid.ground_motion(group, times)
         try:
-            part = summarize(model, grid.geometry(group), grid.ground_motion(group, times), grid.theta2_0_of(group),
-                             normals=study.normals, options=study.options, times=times, capacity=study.capacity,
-                             progress=report)
+            if ground.ndim == 3:  # bidirectional: the spatial models, case by case
+                part = spatial.summarize(model, grid.geometry(group), ground, grid.theta2_0_of(group),
+                                         azimuth=grid.azimuth_of(group), options=study.options, times=times,
+                                         capacity=study.capacity, progress=report)
+            else:
+                part = summarize(model, grid.geometry(group), ground, grid.theta2_0_of(group), normals=study.normals,
+                                 options=study.options, times=times, capacity=study.capacity, progress=report)
         except (ConvergenceError, CapacityError) as err:
             index = getattr(err, "index", None)
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"
@@ -58,7 +64,7 @@ def history_mapping(study, i, model) -> dict:
     if study.symmetric:
         full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
     excitation = dict(study.excitation_spec)
-    for key in (*study.excitation.parameters, "scale"):
+    for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]
     policy = {v: k for k, v in ON_FAILURE.items()}[study.options.on_failure]

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..case import excitation_from, geometry_from, newton_from
 from ..checks import ON_FAILURE, CaseError, check_keys, choice, number
-from ..excitation import check_step
+from ..excitation import COMPONENTS, Component, Oriented, check_step
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
@@ -19,9 +19,13 @@ from ..mechanics.newton import NewtonOptions
 from ..paper.prototypes import TABLE1
 from .grid import PLATE3_FOLLOWS, Grid
 
-#: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``)
-EXCITATION_AXES = ("amplitude", "omega", "scale")
+#: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
+#: (degrees) turns a one-component excitation into bidirectional motion along it, ``component``
+#: (x, y or both) keeps one or both components of a two-component one
+EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "component")
 AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + ("theta2_0", "dt")
+#: sweep axes whose values are names, not numbers
+CATEGORICAL = ("prototype", "component")
 KEYS = {"study", "prototypes", "prototype", "symmetric", "excitation", "theta2_0", "dt", "models", "normals", "sweep",
         "chunk_size", "marks", "histories", "newton", "on_failure", "capacity", "animate"}
 REQUIRED = ("study", "prototype", "excitation", "models", "sweep")
@@ -37,9 +41,9 @@ class StudyError(CaseError):
 
 def axis_units(name):
     """CF units of a sweep axis (None for the categorical prototype axis)."""
-    if name == "prototype":
+    if name in CATEGORICAL:
         return None
-    if name in ANGLES or name == "theta2_0":
+    if name in ANGLES or name in ("theta2_0", "azimuth"):
         return "degree"
     return {"omega": "rad s-1", "scale": "1", "dt": "s"}.get(name, "m")
 
@@ -118,11 +122,11 @@ class Study:
         for i, m in enumerate(models):
             choice(m, f"models[{i}]", MODELS)
         axes = _axes(config["sweep"], known, symmetric)
-        excitation = excitation_from(config["excitation"], base, geometry)
-        for key in ("amplitude", "omega"):
-            if key in axes and key not in excitation.parameters:
-                raise StudyError(f"sweep.{key}: only a sine excitation has an {key}; use 'scale' for "
-                                 f"{config['excitation'].get('kind')!r}")
+        excitation = _swept_excitation(excitation_from(config["excitation"], base, geometry), axes,
+                                       config["excitation"])
+        if excitation.components == 2 and config.get("normals", "signed") != "signed":
+            raise StudyError("normals: bidirectional ground motion runs the spatial models, which use signed normals "
+                             f"only; got {config.get('normals')!r}")
         dt = _steps(config, axes, excitation)
         options = newton_from(config.get("newton"))
         policy = choice(config.get("on_failure", "mark"), "on_failure", ON_FAILURE)
@@ -172,6 +176,13 @@ def _axes(sweep, known, symmetric) -> dict:
         if symmetric and key in PLATE3_FOLLOWS:
             raise StudyError(f"sweep.{key}: with symmetric: true, {key} follows {PLATE3_FOLLOWS[key]}; "
                              f"sweep {PLATE3_FOLLOWS[key]} instead")
+        if key == "component":
+            if not isinstance(spec, list) or not spec:
+                raise StudyError(f"sweep.component: expected a non-empty list of {list(COMPONENTS)}, got {spec!r}")
+            for i, label in enumerate(spec):
+                choice(label, f"sweep.component[{i}]", COMPONENTS)
+            axes[key] = np.array(spec, dtype=str)
+            continue
         if key != "prototype":
             axes[key] = axis_values(spec, f"sweep.{key}")
             continue
@@ -182,6 +193,26 @@ def _axes(sweep, known, symmetric) -> dict:
                 raise StudyError(f"sweep.prototype[{i}]: unknown prototype {label!r}; known: {sorted(known)}")
         axes[key] = np.array(spec, dtype=str)
     return axes
+
+
+def _swept_excitation(excitation, axes, spec):
+    """The excitation a sweep evaluates: a swept azimuth orients a one-component excitation, a swept
+    component selects among the two of a two-component one; each axis checked against the input."""
+    kind = spec.get("kind")
+    for key in ("amplitude", "omega"):
+        if key in axes and key not in excitation.parameters:
+            raise StudyError(f"sweep.{key}: only a sine excitation has an {key}; use 'scale' for {kind!r}")
+    if "azimuth" in axes and "azimuth" not in excitation.parameters:
+        if excitation.components != 1:
+            raise StudyError("sweep.azimuth: orients a one-component excitation, but this one has two components "
+                             "(a record pair or a time, x, y table); sweep 'component' instead")
+        excitation = Oriented(excitation, 0.0)
+    if "component" in axes:
+        if excitation.components != 2 or "component" in spec:
+            raise StudyError("sweep.component: selects the components of a two-component excitation (a record pair "
+                             "or a time, x, y table) that gives no 'component' itself")
+        excitation = Component(excitation, "both")
+    return excitation
 
 
 def _steps(config, axes, excitation) -> float | None:
@@ -206,9 +237,9 @@ def _point(point, key, axes) -> dict:
     check_keys(point, key, (), tuple(axes))
     out = {}
     for name, v in point.items():
-        if name == "prototype":
-            if v not in axes["prototype"]:
-                raise StudyError(f"{key}.prototype: {v!r} is not on the sweep axis {list(axes['prototype'])}")
+        if name in CATEGORICAL:
+            if v not in axes[name]:
+                raise StudyError(f"{key}.{name}: {v!r} is not on the sweep axis {list(axes[name])}")
             out[name] = v
         else:
             out[name] = number(v, f"{key}.{name}")
