@@ -271,3 +271,26 @@ def test_a_step_too_large_fails_with_the_step_and_phase():
     with pytest.raises(ConvergenceError, match=r"step 1.*reduce dt") as err:
         spatial.run("stick_slip", DFP1, X, options=NewtonOptions(max_iter=3))
     assert "sticking" in str(err.value) or "slipping" in str(err.value)
+
+
+# --- what the paper's plane pi gets wrong --------------------------------------------------------
+def test_a_step_solved_wholly_in_pi_pushes_rb3_off_its_guide():
+    """Solved in the plane pi (RB3 rising along pi's in-plane normal to the increment), a circular
+    orbit of 9.5 cm moves RB3 0.8 mm sideways at every step size; the consistent step keeps it on
+    its guide. pi leans by psi = atan(d_perp / w): 3.15 deg at d_perp = 10 cm for DFP1."""
+    dev = spatial.Device.of(DFP1)
+    assert math.degrees(math.atan(0.1 / math.sqrt(dev.L ** 2 - 0.1 ** 2))) == pytest.approx(3.15, abs=0.01)
+    drift = []
+    for dt in (0.02, 0.005):
+        _, X = circle(dt)
+        paper = spatial.collect(spatial.compliant_steps(DFP1, X, in_plane=True))
+        ours = spatial.collect(spatial.compliant_steps(DFP1, X))
+        assert np.array_equal(ours["R3"][:, :2], np.zeros_like(ours["R3"][:, :2]))
+        drift.append(np.linalg.norm(paper["R3"][-1, :2] - paper["R3"][0, :2]))
+    assert drift[0] == pytest.approx(0.817e-3, abs=0.005e-3)
+    assert drift[1] == pytest.approx(drift[0], rel=1e-3)  # not a discretisation error
+    # along a fixed azimuth pi is vertical and the two coincide
+    _, x = sine()
+    paper = spatial.collect(spatial.compliant_steps(DFP1, along(x, 30.0), azimuth=math.radians(30.0), in_plane=True))
+    ours = spatial.collect(spatial.compliant_steps(DFP1, along(x, 30.0), azimuth=math.radians(30.0)))
+    assert np.max(np.abs(paper["R3"] - ours["R3"])) < 1e-12

@@ -231,13 +231,15 @@ class Compliant(Phase):
     labels = tuple(f"{p} rim point on the tangent plane at its previous contact point" for p in RIM_POINTS) + (
         "out-of-plane compatibility of C^21 with C^1", "out-of-plane compatibility of C^23 with C^3")
 
-    def __init__(self, dev, pose, R1, m, contacts):
+    def __init__(self, dev, pose, R1, m, contacts, up=Z):
         super().__init__(pose.Q, pose.axis)
         self.dev, self.R1, self.m, self.contacts = dev, R1, m, contacts
-        self.R3h = pose.R3[:2].copy()
+        # RB3 at R^3(t_{n-1}) + (x_5 - R^3_z(t_{n-1})) up: vertical on its guide, or (``up`` in pi) the
+        # paper's step solved wholly in the plane pi
+        self.up, self.R3_base = up, pose.R3 - pose.R3[2] * up
 
     def R3(self, x):
-        return np.array([self.R3h[0], self.R3h[1], x[5]])
+        return self.R3_base + x[5] * self.up
 
     def pose(self, x):
         return Pose(self.R1, x[:3].copy(), self.orientation(x)[0], self.R3(x))
@@ -269,14 +271,14 @@ class Compliant(Phase):
             for j in range(2):
                 J[i, 3 + j] = (along[i] * da[j] + across[i] * du[j]) @ normal
             if i >= 2:
-                J[i, 5] = -normal[2]
+                J[i, 5] = -(normal @ self.up)
         C1, C3 = self.R1 + dev.c1 * Z, R3 + dev.c3 * Z
         for i, (y, C) in enumerate(((dev.y21, C1), (dev.y23, C3))):
             g[4 + i] = (G + y * a - C) @ m
             J[4 + i, :3] = m
             for j in range(2):
                 J[4 + i, 3 + j] = y * (da[j] @ m)
-        J[5, 5] = -m[2]
+        J[5, 5] = -(m @ self.up)
         return g, J
 
 
@@ -445,9 +447,13 @@ def _reference(azimuth):
     return np.array([math.cos(azimuth), math.sin(azimuth), 0.0])
 
 
-def compliant_steps(geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None):
+def compliant_steps(geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None,
+                    in_plane=False):
     """Yield a ``SpatialStep`` per step of compliant sliding under X_g (T, 2) (m); ``azimuth``
-    (rad): the plane of theta2_0 and the direction of a zero increment."""
+    (rad): the plane of theta2_0 and the direction of a zero increment. ``in_plane=True`` solves
+    each step wholly in its plane pi, as the paper's Sec. 4 reads: RB3 rises along the direction
+    in pi normal to the increment, which leans from the vertical once the device is displaced
+    across the increment, and RB3 leaves its guide (kept to measure that; not a model to use)."""
     Xg = _ground(Xg)
     dev = Device.of(geometry)
     pose = start(geometry, Xg[0], theta2_0, azimuth)
@@ -464,7 +470,8 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOp
             p, normal = project(P, C, r)
             contacts.append((p - R, normal))  # plate frames: the plates do not rotate
         R1 = np.array([Xg[n, 0], Xg[n, 1], 0.0])
-        phase = Compliant(dev, pose, R1, m, contacts)
+        up = unit(cross(m, e1)) if in_plane else Z
+        phase = Compliant(dev, pose, R1, m, contacts, up)
         guess = np.concatenate([pose.G + 0.5 * (R1 - pose.R1), [0.0, 0.0, pose.R3[2]]])
         sol = solve(phase, guess, options, _context(n, times))
         pose = sol.pose
