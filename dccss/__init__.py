@@ -12,16 +12,20 @@ Typical use::
                               tr1=0.0258, tr3=0.0258)
     ds = simulate(g, Sine(amplitude=0.27, omega=30.0, duration=1.0), model="stick_slip", dt=0.001)
     ds.to_netcdf("dfp1.nc")
+    # bidirectional: the same sine along 30 degrees, or a record pair / time, x, y table
+    from dccss import Oriented
+    ds3 = simulate(g, Oriented(Sine(0.2, 6.28, 2.0), 30.0), model="stick_slip", dt=0.005)
 
 Layout (imports flow downwards only):
 
 * ``mechanics/`` - the model, numpy only: ``geometry``, ``kinematics``, ``constraints``,
   ``newton``, ``models`` (the steppers and the registry of models), ``capacity`` (the retaining
-  rings), ``compiled`` (the same steppers compiled with Numba, optional);
+  rings), ``compiled`` (the same steppers compiled with Numba, optional), ``spatial`` (both models
+  in space, for bidirectional ground motion);
 * top level - one case in, one dataset out: ``excitation`` and ``records`` (X_g(t)), ``results``
   (CF datasets), ``simulation``, ``checks``/``case``/``cli`` (input checks, case files, ``dccss
   run``/``animate``), ``files`` (atomic writes), ``drawing`` (figures and the device to scale),
-  ``animation``;
+  ``animation``, ``plan`` (plan view and sections of a history in space, ``dccss plot``);
 * ``studies/`` - study files: ``spec``, ``grid``, ``sweep`` (batched summaries), ``run``,
   ``combine``, ``plots``;
 * ``paper/`` - what is specific to the paper: ``prototypes`` (Table 1), ``figures``, ``validation``.
@@ -36,7 +40,8 @@ _LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "mechanics.geo
          "NewtonOptions": "mechanics.newton", "ConvergenceError": "mechanics.newton",
          "SingularJacobianError": "mechanics.newton", "simulate": "simulation",
          "breakaway": "simulation", "CapacityError": "mechanics.capacity", "Record": "records",
-         "RecordWarning": "records", "Scaled": "excitation"}
+         "RecordWarning": "records", "Scaled": "excitation", "Oriented": "excitation", "PlaneTable": "excitation",
+         "Component": "excitation", "RecordPair": "records"}
 __all__ = ["__version__", *_LAZY]
 
 
