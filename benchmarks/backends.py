@@ -8,13 +8,20 @@ loads its kernels from the on-disk cache, or compiles them if the cache is empty
   steps each (sine of 0.27 m at 30 rad/s over 1 s, dt = 0.001 s), reduced to per-case
   summaries (``dccss.studies.sweep.summarize`` / ``dccss.mechanics.compiled.summarize``), as benchmarks/sweep.py;
 * ``history``: one stick-slip history of DFP1, the same sine over 30 s at dt = 0.001 s
-  (30 000 steps; ``dccss.mechanics.models.stick_slip`` / ``dccss.mechanics.compiled.stick_slip``).
+  (30 000 steps; ``dccss.mechanics.models.stick_slip``);
+* ``run``: the same history through ``dccss run CASE.yaml -o OUT.nc`` as a whole process
+  (interpreter start, imports, the run, the dataset written), timed from outside.
 
-cold_s is the first call in the process (the compiled backend: loading or compiling its
-kernels), warm_s the second; the numpy backend runs once (it has nothing to warm up). Lines:
+Each runs through the package's entry points with DCCSS_BACKEND set to the backend measured.
+cold_s is the first call in the process (the compiled backend: loading its kernels from the
+cache), warm_s the second; the numpy backend runs once (it has nothing to warm up). For ``run``
+cold_s is a process with an empty kernel cache (a temporary NUMBA_CACHE_DIR: it compiles), warm_s
+one that loads them. Lines:
 
     sweep backend=numba model=compliant N=10000 steps=1000 case_steps_per_s=... peak_mem_mb=... cold_s=... warm_s=...
     ratio sweep model=compliant N=10000 numba_over_numpy=...
+    run backend=numba model=stick_slip steps=30000 cold_s=... warm_s=...
+    ratio run model=stick_slip steps=30000 numba_over_numpy=...   (numpy's process time over numba's, warm)
 
 Run: python benchmarks/backends.py [--sizes 10000] [--big 100000] [--steps 1000] [--history-steps 30000]
 """
@@ -23,10 +30,14 @@ import argparse
 import multiprocessing as mp
 import os
 import resource
+import subprocess
+import sys
 import tempfile
 import time
+from pathlib import Path
 
 MODELS = ("compliant", "stick_slip")
+PARTS = ["compile", "sweep", "history", "run"]
 
 
 def _geometry(n):
@@ -53,11 +64,12 @@ def _timed(call, repeats):
 
 
 def sweep(backend, model, n, steps, queue):
+    os.environ["DCCSS_BACKEND"] = backend
     import numpy as np
 
     from dccss.excitation import Sine
+    from dccss.studies.sweep import summarize
 
-    summarize = _summarize(backend)
     geometry = _geometry(n)
     Xg = Sine(0.27, 30.0, 1.0).displacement(np.arange(steps + 1) * (1.0 / steps))
     out, times = _timed(lambda: summarize(model, geometry, Xg), 1 if backend == "numpy" else 2)
@@ -65,24 +77,14 @@ def sweep(backend, model, n, steps, queue):
     queue.put((times, _peak_mb()))
 
 
-def _summarize(backend):
-    if backend == "numpy":
-        from dccss.studies.sweep import summarize
-    else:
-        from dccss.mechanics.compiled import summarize
-    return summarize
-
-
 def history(backend, steps, queue):
+    os.environ["DCCSS_BACKEND"] = backend
     import numpy as np
 
     from dccss.excitation import Sine, step_times
+    from dccss.mechanics.models import stick_slip
     from dccss.paper.prototypes import DFP1
 
-    if backend == "numpy":
-        from dccss.mechanics.models import stick_slip
-    else:
-        from dccss.mechanics.compiled import stick_slip
     dt = 0.001
     excitation = Sine(0.27, 30.0, steps * dt)
     times = step_times(excitation, dt)
@@ -104,6 +106,22 @@ def compile_cold(queue):
         for model in MODELS:
             compiled.run(model, DFP1, np.array([0.0, 1e-3]))
         queue.put(([time.perf_counter() - start], _peak_mb()))
+
+
+def cli_run(backend, steps, cache=None):
+    """Seconds of one ``dccss run`` process of the stick-slip history (``cache``: NUMBA_CACHE_DIR)."""
+    with tempfile.TemporaryDirectory() as work:
+        case = Path(work) / "case.yaml"
+        case.write_text("prototype: DFP1\n"
+                        f"excitation: {{kind: sine, amplitude: 0.27, omega: 30.0, duration: {steps * 0.001!r}}}\n"
+                        "dt: 0.001\nmodel: stick_slip\n")
+        env = {**os.environ, "DCCSS_BACKEND": backend}
+        if cache is not None:
+            env["NUMBA_CACHE_DIR"] = cache
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "dccss", "run", str(case), "-o", str(Path(work) / "out.nc"), "-q"],
+                       env=env, check=True)
+        return time.perf_counter() - start
 
 
 def _in_process(target, *args):
@@ -129,12 +147,15 @@ def main():
     parser.add_argument("--steps", type=int, default=1000)
     parser.add_argument("--history-steps", type=int, default=30000)
     parser.add_argument("--no-compile", action="store_true", help="skip the empty-cache compile measurement")
+    parser.add_argument("--parts", nargs="+", default=PARTS, choices=PARTS, help="what to measure (default: all)")
     args = parser.parse_args()
-    if not args.no_compile:
+    if args.no_compile:
+        args.parts = [p for p in args.parts if p != "compile"]
+    if "compile" in args.parts:
         seconds, peak = _in_process(compile_cold)
         print(f"compile backend=numba models={','.join(MODELS)} seconds={seconds[0]:.1f} peak_mem_mb={peak:.0f}",
               flush=True)
-    for model in MODELS:
+    for model in MODELS if "sweep" in args.parts else ():
         for n in args.sizes + args.big:
             rates = {}
             for backend in ("numpy", "numba") if n in args.sizes else ("numba",):
@@ -146,6 +167,13 @@ def main():
             if len(rates) == 2:
                 print(f"ratio sweep model={model} N={n} numba_over_numpy={rates['numba'] / rates['numpy']:.1f}",
                       flush=True)
+    if "history" in args.parts:
+        _history(args)
+    if "run" in args.parts:
+        _run(args)
+
+
+def _history(args):
     rates = {}
     for backend in ("numpy", "numba"):
         seconds, peak = _in_process(history, backend, args.history_steps)
@@ -155,6 +183,17 @@ def main():
               f"peak_mem_mb={peak:.0f} {text}", flush=True)
     print(f"ratio history model=stick_slip steps={args.history_steps} "
           f"numba_over_numpy={rates['numba'] / rates['numpy']:.1f}", flush=True)
+
+
+def _run(args):
+    seconds = {"numpy": [cli_run("numpy", args.history_steps)]}
+    with tempfile.TemporaryDirectory() as cache:  # an empty kernel cache: the first process compiles
+        seconds["numba"] = [cli_run("numba", args.history_steps, cache), cli_run("numba", args.history_steps, cache)]
+    for backend in ("numpy", "numba"):
+        print(f"run backend={backend} model=stick_slip steps={args.history_steps} {_times(seconds[backend])[2]}",
+              flush=True)
+    print(f"ratio run model=stick_slip steps={args.history_steps} "
+          f"numba_over_numpy={seconds['numpy'][0] / seconds['numba'][1]:.1f}", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,11 +1,15 @@
-"""Time one 1000-step history (DFP1, dt = 0.001 s, X_g,max = 0.27 m) per model.
+"""Time one 1000-step history (DFP1, dt = 0.001 s, X_g,max = 0.27 m) per model, on the numpy
+reference unless DCCSS_BACKEND says otherwise.
 
 Prints the best of several repeats: seconds per history and steps per second.
 Run: python benchmarks/solver.py [--repeats N]
 """
 
 import argparse
+import os
 import time
+
+os.environ.setdefault("DCCSS_BACKEND", "numpy")
 
 from dccss.excitation import Sine, step_times
 from dccss.mechanics import models
@@ -26,7 +30,8 @@ def main():
             start = time.perf_counter()
             models.run(model, DFP1, Xg, 0.0, times=times)
             best = min(best, time.perf_counter() - start)
-        print(f"solver model={model} steps={steps} seconds={best:.4f} steps_per_s={steps / best:.0f}")
+        print(f"solver backend={os.environ['DCCSS_BACKEND']} "
+              f"model={model} steps={steps} seconds={best:.4f} steps_per_s={steps / best:.0f}")
 
 
 if __name__ == "__main__":

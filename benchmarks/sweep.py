@@ -3,17 +3,21 @@
 Each measurement runs in a fresh process (so the peak resident memory is its own): N cases of
 DFP1-type devices with pad angles alpha21 spread over 6..12 deg, 1000 steps each (sine of
 0.27 m at 30 rad/s over 1 s, dt = 0.001 s), reduced to per-case summaries on the fly
-(``dccss.studies.sweep.summarize``). Prints one line per measurement, e.g.
+(``dccss.studies.sweep.summarize``) on the backend DCCSS_BACKEND names (here numpy unless set:
+benchmarks/backends.py compares the backends). Prints one line per measurement, e.g.
 
-    sweep model=compliant N=10000 steps=1000 case_steps_per_s=1234567 peak_mem_mb=850
+    sweep backend=numpy model=compliant N=10000 steps=1000 case_steps_per_s=1234567 peak_mem_mb=850
 
 Run: python benchmarks/sweep.py [--sizes 1 100 10000] [--steps 1000]
 """
 
 import argparse
 import multiprocessing as mp
+import os
 import resource
 import time
+
+os.environ.setdefault("DCCSS_BACKEND", "numpy")  # inherited by the measuring processes
 
 
 def measure(model, n, steps, queue):
@@ -49,7 +53,8 @@ def main():
             proc.start()
             rate, peak = queue.get()
             proc.join()
-            print(f"sweep model={model} N={n} steps={args.steps} case_steps_per_s={rate:.0f} peak_mem_mb={peak:.0f}",
+            print(f"sweep backend={os.environ['DCCSS_BACKEND']} "
+                  f"model={model} N={n} steps={args.steps} case_steps_per_s={rate:.0f} peak_mem_mb={peak:.0f}",
                   flush=True)
 
 

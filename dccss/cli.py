@@ -1,5 +1,5 @@
-"""Command line: ``dccss run CASE.yaml -o OUT.nc`` and ``dccss animate RESULT.nc -o OUT.gif|html|mp4``
-(also ``python -m dccss ...``).
+"""Command line: ``dccss run CASE.yaml -o OUT.nc``, ``dccss animate RESULT.nc -o OUT.gif|html|mp4`` and
+``dccss plot RESULT.nc -o OUT.png|pdf`` (also ``python -m dccss ...``).
 
 Exit codes: 0 written (also a history marked failed with ``on_failure: mark``), 2 bad input,
 3 solver failure, 4 the pad reached a ring with ``capacity: error``. Warnings (an implausible
@@ -16,15 +16,20 @@ import warnings
 
 import numpy as np
 
-from . import animation
 from ._version import __version__
 from .case import CaseError, load_case
 from .files import write_netcdf
+from .mechanics import backend
 from .mechanics.capacity import CapacityError
 from .mechanics.newton import ConvergenceError
 
 
 def _summary(ds) -> str:
+    if ds.attrs.get("motion") == "bidirectional":
+        interp = max(float(np.nanmax(np.abs(ds[name].values))) for name in ds if name.startswith("I_"))
+        return (f"{ds.attrs['model']}, bidirectional, {ds.sizes['t'] - 1} steps: max tilt = "
+                f"{np.nanmax(ds['tilt'].values):.3f} deg, max rise = {100 * float(ds['rise'].max()):.3f} cm, "
+                f"max |interpenetration| = {1e3 * interp:.4g} mm")
     theta2 = ds["theta2"].values
     interp = max(float(np.nanmax(np.abs(ds[f"I_{c}"].values))) for c in "ABCD")
     return (f"{ds.attrs['model']}, {ds.sizes['t'] - 1} steps: max |theta2| = "
@@ -80,12 +85,22 @@ def main(argv=None) -> int:
     run.add_argument("case", help="YAML case file")
     run.add_argument("-o", "--output", required=True, help="netCDF file to write")
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success (warnings still)")
-    animation.add_parser(sub)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] != ["run"]:  # `dccss run` draws nothing: it does not import the drawing code (matplotlib)
+        from . import animation, plan
+
+        animation.add_parser(sub)
+        plan.add_parser(sub)
     args = parser.parse_args(argv)
     if hasattr(args, "handler"):
         return args.handler(args)
     warnings.formatwarning = _warn_line
     start = time.perf_counter()
+    try:
+        backend.check()
+    except (ValueError, backend.BackendError) as err:
+        print(f"dccss: error: {err}", file=sys.stderr)
+        return 2
     progress = _Progress(sys.stderr) if sys.stderr.isatty() and not args.quiet else None
     try:
         ds = load_case(args.case).run(progress=progress)
@@ -105,7 +120,9 @@ def main(argv=None) -> int:
     for line in warnings_of(ds):
         print(f"dccss: warning: {line}", file=sys.stderr)
     if not args.quiet:
-        print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s")
+        used = "numpy: the spatial models have no compiled kernels" if ds.attrs.get("motion") == "bidirectional" \
+            else backend.last
+        print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s (backend {used})")
     return 0
 
 

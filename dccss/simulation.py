@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 
 from .excitation import step_times
-from .mechanics import models
+from .mechanics import backend, models
 from .mechanics.capacity import CAPACITY_POLICIES, CapacityError, capacity_message, ring_reached
 from .mechanics.kinematics import corner_diagnostics
 from .mechanics.newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
@@ -42,52 +42,76 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
+    if getattr(excitation, "components", 1) == 2:  # bidirectional: the spatial models
+        return simulate_spatial(geometry, excitation, model=model, dt=dt, theta2_0=theta2_0, normals=normals,
+                                options=options, capacity=capacity, on_failure=on_failure, attrs=attrs,
+                                progress=progress)
     models.model(model)  # a ValueError names the known models
+    _check_policies(capacity, on_failure)
+    if np.ndim(geometry.L) != 0:
+        raise ValueError("simulate runs one case: geometry fields must be scalars")
+    times = step_times(excitation, dt)
+    try:
+        history = _history(model, geometry, excitation.displacement(times), theta2_0, normals, options, times,
+                           capacity != "continue", progress)
+        failure = None
+    except ConvergenceError as err:
+        history = getattr(err, "history", None)
+        gaps = None if history is None else corner_diagnostics(history["q"], geometry)[1]
+        failure = _explain(err, geometry, None if gaps is None else (gaps[:, 0], gaps[:, 1]), times)
+        if on_failure == "raise" or history is None:
+            raise failure from None
+    steps = history["q"]
+    ds = history_dataset(model, history, geometry, times[:len(steps)], excitation,
+                         theta2_0=theta2_0, dt=dt, normals=normals, tol=options.tol, attrs=attrs)
+    return _settle(ds, geometry, capacity, failure, times, len(steps))
+
+
+def _check_policies(capacity, on_failure):
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     if on_failure not in FAILURE_POLICIES:
         raise ValueError(f"on_failure must be one of {FAILURE_POLICIES}, got {on_failure!r}")
-    if np.ndim(geometry.L) != 0:
-        raise ValueError("simulate runs one case: geometry fields must be scalars")
-    times = step_times(excitation, dt)
-    steps, failure = [], None
+
+
+def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, progress):
+    """The history (``models.collect``); with ``stop_at_ring`` it ends at the first step
+    where the pad has passed a retaining ring. A ConvergenceError carries the history up to the
+    last converged step as ``err.history``. A long history runs on the compiled kernels
+    (``backend``; ``progress`` is then called once, at the end)."""
+    kernels, history = backend.compiled(model, len(Xg) - 1), None
+    if kernels is not None:
+        try:
+            history = kernels.run(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
+                                  stop_at_ring=stop_at_ring)
+        except ConvergenceError as err:
+            history = getattr(err, "history", None)
+            raise
+        finally:
+            if progress is not None and history is not None:
+                progress(len(history["q"]) - 1, len(Xg) - 1)
+        return history
+    steps = []
     try:
-        for step in models.steps(model, geometry, excitation.displacement(times), theta2_0, normals=normals,
-                                 options=options, times=times):
+        for step in models.steps(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times):
             steps.append(step)
             if progress is not None:
-                progress(step.n, len(times) - 1)
-            if capacity != "continue" and (corner_diagnostics(step.q, geometry)[1] < 0).any():
+                progress(step.n, len(Xg) - 1)
+            if stop_at_ring and (corner_diagnostics(step.q, geometry)[1] < 0).any():
                 break  # the pad reaches a ring: stop here (or fail below) before solving further
     except ConvergenceError as err:
-        failure = _explain(err, geometry, [s.q for s in steps], times)
-        if on_failure == "raise":
-            raise failure from None
-    ds = history_dataset(model, models.collect(steps), geometry, times[:len(steps)], excitation,
-                         theta2_0=theta2_0, dt=dt, normals=normals, tol=options.tol, attrs=attrs)
-    ds.attrs["capacity_policy"] = capacity
-    ds.attrs["failed"] = int(failure is not None)
-    if failure is not None:
-        ds.attrs.update(failure_time_s=float(times[len(steps)]), failure_message=str(failure))
-    reached = ring_reached(ds["clearance_1"].values, ds["clearance_3"].values, ds["t"].values)
-    if reached:
-        if capacity == "error":
-            raise CapacityError(capacity_message(geometry, reached) +
-                                ": the excitation exceeds the device capacity; lower it, or set capacity: "
-                                "continue (flag it) or stop (end the history there)")
-        ds.attrs.update(capacity_exceeded_at_s=reached["t"], capacity_exceeded_plate=reached["plate"],
-                        capacity_exceeded_by_m=reached["by"])
-        if capacity == "stop" and len(steps) < len(times):
-            ds.attrs["stopped_at_s"] = float(times[len(steps) - 1])
-    return ds
+        if steps:
+            err.history = models.collect(steps)
+        raise
+    return models.collect(steps)
 
 
-def _explain(err, geometry, qs, times):
-    """A solver failure, prefixed with the ring the pad passed before it (if it did)."""
-    if not qs:
+def _explain(err, geometry, gaps, times):
+    """A solver failure, prefixed with the ring the pad passed before it (if it did); ``gaps``: the
+    clearances to the rings of RB1 and RB3 of the converged steps (None: none converged)."""
+    if gaps is None or len(gaps[0]) == 0:
         return err
-    gap = corner_diagnostics(np.array(qs), geometry)[1]
-    reached = ring_reached(gap[:, 0], gap[:, 1], times[:len(qs)])
+    reached = ring_reached(gaps[0], gaps[1], times[:len(gaps[0])])
     if reached is None:
         return err
     return err.with_hint(
@@ -116,4 +140,61 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
     if steps.ndim == 0:
         ds = ds.isel(dXg=0)
         ds.attrs["dXg_m"] = float(steps)
+    return ds
+
+
+def simulate_spatial(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
+                     options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="raise",
+                     attrs: dict | None = None, progress=None) -> xr.Dataset:
+    """Run one case under a bidirectional excitation (``excitation.components == 2``) with the
+    spatial models (``dccss.mechanics.spatial``) and return its dataset
+    (``results.spatial_dataset``). Parameters as ``simulate``; theta2_0 tilts the pad in the
+    vertical plane of the excitation's ``azimuth``; only signed normals (the consistent ones)."""
+    from .mechanics import spatial
+    from .results import spatial_dataset
+
+    if model not in spatial.REGISTRY:
+        raise ValueError(f"model must be one of {spatial.SPATIAL_MODELS}, got {model!r}")
+    if normals != "signed":
+        raise ValueError(f"normals: the spatial model (bidirectional ground motion) uses signed normals only, got "
+                         f"{normals!r} (unsigned normals reproduce the planar paper's computation)")
+    _check_policies(capacity, on_failure)
+    dev = spatial.Device.of(geometry)
+    times = step_times(excitation, dt)
+    records, failure = [], None
+    try:
+        for step in spatial.steps(model, geometry, excitation.displacement(times), theta2_0,
+                                  azimuth=float(excitation.azimuth), options=options, times=times):
+            records.append(step)
+            if progress is not None:
+                progress(step.n, len(times) - 1)
+            if capacity != "continue" and spatial.beyond_ring(step.pose, dev):
+                break
+    except ConvergenceError as err:
+        h = spatial.collect(records) if records else None
+        failure = _explain(err, geometry, h and spatial.clearances(h["G"], h["Q"], h["R1"], h["R3"], dev), times)
+        if on_failure == "raise" or not records:
+            raise failure from None
+    ds = spatial_dataset(model, spatial.collect(records), geometry, times[:len(records)], excitation,
+                         theta2_0=theta2_0, dt=dt, tol=options.tol, attrs=attrs)
+    return _settle(ds, geometry, capacity, failure, times, len(records))
+
+
+def _settle(ds, geometry, capacity, failure, times, n_steps):
+    """The run's attributes: capacity policy, failure (time and message) and the ring reached (or
+    CapacityError under capacity "error")."""
+    ds.attrs["capacity_policy"] = capacity
+    ds.attrs["failed"] = int(failure is not None)
+    if failure is not None:
+        ds.attrs.update(failure_time_s=float(times[n_steps]), failure_message=str(failure))
+    reached = ring_reached(ds["clearance_1"].values, ds["clearance_3"].values, ds["t"].values)
+    if reached:
+        if capacity == "error":
+            raise CapacityError(capacity_message(geometry, reached) +
+                                ": the excitation exceeds the device capacity; lower it, or set capacity: "
+                                "continue (flag it) or stop (end the history there)")
+        ds.attrs.update(capacity_exceeded_at_s=reached["t"], capacity_exceeded_plate=reached["plate"],
+                        capacity_exceeded_by_m=reached["by"])
+        if capacity == "stop" and n_steps < len(times):
+            ds.attrs["stopped_at_s"] = float(times[n_steps - 1])
     return ds

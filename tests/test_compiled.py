@@ -23,6 +23,14 @@ from dccss.paper.prototypes import TABLE1  # noqa: E402
 from dccss.studies import sweep  # noqa: E402
 
 TOL = 1e-10
+
+
+@pytest.fixture(autouse=True)
+def reference_is_numpy(monkeypatch):
+    """models.run and sweep.summarize send large runs to the compiled kernels (DCCSS_BACKEND=auto):
+    here they are the numpy reference, whatever the size."""
+    monkeypatch.setenv("DCCSS_BACKEND", "numpy")
+
 MARK = newton.NewtonOptions(on_failure="mark")
 NORMALS = ("signed", "unsigned")
 

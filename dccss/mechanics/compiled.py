@@ -940,3 +940,19 @@ def _summaries(model, acc, count, capacity):
     if model == "stick_slip":
         out.update(sticking_rotation_max=acc[..., STICK_TURN_MAX], rise_stick_max=acc[..., RISE_STICK_MAX])
     return mark_failures(out, failure, reached, capacity)
+
+
+def warm():
+    """Compile (or load) the kernels of both models into the on-disk cache: e.g. once before
+    parallel jobs that would each compile them (``python -m dccss.mechanics.compiled``)."""
+    from ..paper.prototypes import DFP1
+
+    for model in models.MODELS:
+        if model in HISTORY:
+            run(model, DFP1, np.array([0.0, 1e-3]))
+
+
+if __name__ == "__main__":
+    from dccss.mechanics.compiled import warm as _warm  # the package's module, whose kernels are cached
+
+    _warm()

@@ -28,7 +28,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import newton
+from . import backend, newton
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .kinematics import (
     CORNERS,
@@ -304,8 +304,13 @@ def model(name) -> Model:
 
 def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """The whole history of model ``name`` (arrays, time first; see ``collect``). Keywords as
-    for the step generators."""
-    return collect(model(name).steps(geometry, Xg, theta2_0, **kw))
+    for the step generators. Large runs go to the compiled kernels (``backend``: DCCSS_BACKEND),
+    which give the same histories."""
+    entry = model(name)
+    kernels = backend.compiled(name, *backend.size(geometry, Xg, theta2_0))
+    if kernels is not None:
+        return kernels.run(name, geometry, Xg, theta2_0, **kw)
+    return collect(entry.steps(geometry, Xg, theta2_0, **kw))
 
 
 def steps(name, geometry, Xg, theta2_0=0.0, **kw):
