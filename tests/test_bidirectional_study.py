@@ -105,3 +105,49 @@ def test_the_shipped_bidirectional_study(shipped_study):
             assert abs(float(mine[name]) - float(theirs[name])) < 1e-9, (model, name)
     history = xr.open_dataset(work / "results/studies/bidirectional/histories/stick_slip_2.nc")
     assert history.attrs["motion"] == "bidirectional" and history.attrs["excitation_component"] == "both"
+
+
+def _ring_batch():
+    """Two cases along 45 deg: one within the capacity, one past the rings of RB1 and RB3."""
+    from dccss.mechanics.geometry import Geometry
+    from dccss.paper.prototypes import DFP1
+
+    t = np.arange(101) * 0.01
+    x = np.sin(2 * np.pi * t)[:, None] * np.array([0.1, 2.3 * float(DFP1.capacity1)])
+    X = np.stack([x, x], axis=-1) / np.sqrt(2.0)
+    return Geometry(**{k: np.full(2, getattr(DFP1, k)) for k in DFP1.__dataclass_fields__}), X, t
+
+
+@pytest.mark.parametrize("capacity", ["continue", "stop", "error"])
+def test_spatial_sweep_capacity_policies_match_the_planar_sweep(capacity):
+    from dccss.mechanics.capacity import CapacityError
+    from dccss.mechanics.newton import NewtonOptions
+    from dccss.studies.sweep import summarize
+
+    g, X, t = _ring_batch()
+    planar_x = np.hypot(X[..., 0], X[..., 1])
+    mark = NewtonOptions(on_failure="mark")
+    ours = spatial.summarize("compliant", g, X, azimuth=np.radians(45.0), capacity=capacity, options=mark, times=t)
+    theirs = summarize("compliant", g, planar_x, capacity=capacity, options=mark, times=t)
+    for name in ("capacity_exceeded", "failed"):
+        assert np.array_equal(ours[name], theirs[name]), name
+    for name in ("capacity_time", "failure_time", "theta2_max_abs", "rise_max", "clearance_min"):
+        assert np.allclose(ours[name], theirs[name], rtol=0, atol=1e-9, equal_nan=True), name
+    assert bool(ours["capacity_exceeded"][1] or ours["failed"][1]) and not ours["capacity_exceeded"][0]
+    if capacity == "error":
+        with pytest.raises(CapacityError, match=r"batch index \(1,\)"):
+            spatial.summarize("compliant", g, X, capacity=capacity, times=t)
+
+
+def test_spatial_sweep_marks_a_failed_case_and_goes_on():
+    from dccss.mechanics.newton import ConvergenceError, NewtonOptions
+
+    g, X, t = _ring_batch()
+    X = X.copy()
+    X[50:, 1] += 0.8  # a jump no step can follow
+    out = spatial.summarize("stick_slip", g, X, options=NewtonOptions(on_failure="mark", max_iter=5), times=t)
+    assert list(out["failed"]) == [False, True] and out["failure_time"][1] == pytest.approx(0.5)
+    assert np.isfinite(out["theta2_max_abs"][0]) and np.isnan(out["theta2_max_abs"][1])
+    with pytest.raises(ConvergenceError) as err:
+        spatial.summarize("stick_slip", g, X, options=NewtonOptions(max_iter=5), times=t)
+    assert err.value.index == (1,)
