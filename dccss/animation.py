@@ -803,12 +803,18 @@ def add_parser(subparsers):
 
 
 def _command(args: argparse.Namespace) -> int:
+    return run_command("animate", lambda: animate(args.result, args.output, start=args.start, end=args.end,
+                                                  fps=args.fps, max_frames=args.max_frames,
+                                                  exaggeration=args.exaggeration), args.quiet)
+
+
+def run_command(name, call, quiet) -> int:
+    """A drawing sub-command: ``call()`` returns its summary line; an AnimationError is exit code 2."""
     try:
-        line = animate(args.result, args.output, start=args.start, end=args.end, fps=args.fps,
-                       max_frames=args.max_frames, exaggeration=args.exaggeration)
+        line = call()
     except AnimationError as err:
-        print(f"dccss animate: error: {err}", file=sys.stderr)
+        print(f"dccss {name}: error: {err}", file=sys.stderr)
         return 2
-    if not args.quiet:
-        print(f"dccss animate: wrote {line}")
+    if not quiet:
+        print(f"dccss {name}: wrote {line}")
     return 0

@@ -266,8 +266,24 @@ def read_table(path):
     return Table(data[:, header.index("time")], data[:, header.index("displacement")], source=str(path))
 
 
+class _Wrapper:
+    """An excitation built on another (``self.excitation``): its kind and time span are the inner one's."""
+
+    @property
+    def kind(self):
+        return self.excitation.kind
+
+    @property
+    def t_start(self):
+        return self.excitation.t_start
+
+    @property
+    def t_end(self):
+        return self.excitation.t_end
+
+
 @dataclass(frozen=True)
-class Oriented:
+class Oriented(_Wrapper):
     """A one-component excitation X(t) applied along the azimuth ``azimuth_deg`` (degrees, from
     +x towards +y): displacement X(t) (cos az, sin az), velocity likewise (see :func:`direction`).
 
@@ -289,10 +305,6 @@ class Oriented:
         object.__setattr__(self, "azimuth_deg", _number("azimuth", self.azimuth_deg))
 
     @property
-    def kind(self):
-        return self.excitation.kind
-
-    @property
     def parameters(self):
         return (*self.excitation.parameters, "azimuth")
 
@@ -305,14 +317,6 @@ class Oriented:
     def direction(self) -> np.ndarray:
         """The unit vector (cos az, sin az) the displacement is along."""
         return np.array(direction(self.azimuth_deg))
-
-    @property
-    def t_start(self):
-        return self.excitation.t_start
-
-    @property
-    def t_end(self):
-        return self.excitation.t_end
 
     def _along(self, X, azimuth):
         c, s = direction(self.azimuth_deg if azimuth is None else azimuth)
@@ -336,7 +340,7 @@ COMPONENTS = ("x", "y", "both")
 
 
 @dataclass(frozen=True)
-class Component:
+class Component(_Wrapper):
     """One component of a two-component excitation, the other held at zero (``which``: "x" or
     "y"), or both ("both"): the same record pair or table run unidirectionally and
     bidirectionally, with the same spatial model and outputs. Along y the reference azimuth (the
@@ -354,24 +358,12 @@ class Component:
             raise ValueError(f"excitation.component: expected one of {list(COMPONENTS)}, got {self.which!r}")
 
     @property
-    def kind(self):
-        return self.excitation.kind
-
-    @property
     def parameters(self):
         return self.excitation.parameters
 
     @property
     def azimuth(self) -> float:
         return {"x": 0.0, "y": float(np.pi / 2), "both": float(self.excitation.azimuth)}[self.which]
-
-    @property
-    def t_start(self):
-        return self.excitation.t_start
-
-    @property
-    def t_end(self):
-        return self.excitation.t_end
 
     @property
     def mask(self) -> np.ndarray:
@@ -388,17 +380,13 @@ class Component:
 
 
 @dataclass(frozen=True)
-class Scaled:
+class Scaled(_Wrapper):
     """An excitation multiplied by a constant ``factor`` (X_g and its velocity; both components
     of a two-component one)."""
 
     excitation: object
     factor: float
     parameters = ()
-
-    @property
-    def kind(self):
-        return self.excitation.kind
 
     @property
     def components(self):
@@ -408,14 +396,6 @@ class Scaled:
     def azimuth(self):
         """The inner excitation's azimuth (rad); only two-component excitations have one."""
         return self.excitation.azimuth
-
-    @property
-    def t_start(self):
-        return self.excitation.t_start
-
-    @property
-    def t_end(self):
-        return self.excitation.t_end
 
     def displacement(self, t):
         return self.factor * self.excitation.displacement(t)

@@ -133,13 +133,16 @@ def draw_axis_trace(ax, v: View, n=None):
     xs = np.concatenate([[0.0]] + [tx for tx, _ in whole])
     ys = np.concatenate([[0.0]] + [ty for _, ty in whole])
     lo, hi = np.array([np.nanmin(xs), np.nanmin(ys)]), np.array([np.nanmax(xs), np.nanmax(ys)])
-    half = 0.55 * max(float((hi - lo).max()), 0.02)
-    mid = 0.5 * (lo + hi)
+    _square(ax, 0.5 * (lo + hi), 0.55 * max(float((hi - lo).max()), 0.02))
+    ax.set_xlabel("tilt towards x (deg)")
+    ax.set_ylabel("tilt towards y (deg)")
+
+
+def _square(ax, mid, half):
+    """Equal-aspect limits: a square of half side ``half`` centred on ``mid``."""
     ax.set_xlim(mid[0] - half, mid[0] + half)
     ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_aspect("equal")
-    ax.set_xlabel("tilt towards x (deg)")
-    ax.set_ylabel("tilt towards y (deg)")
 
 
 def draw_traces(ax, v: View):
@@ -260,18 +263,9 @@ def add_parser(subparsers):
 
 
 def _command(args) -> int:
-    import sys
+    from .animation import run_command
 
-    from .animation import AnimationError
-
-    try:
-        line = plot(args.result, args.output, args.at)
-    except AnimationError as err:
-        print(f"dccss plot: error: {err}", file=sys.stderr)
-        return 2
-    if not args.quiet:
-        print(f"dccss plot: wrote {line}")
-    return 0
+    return run_command("plot", lambda: plot(args.result, args.output, args.at), args.quiet)
 
 
 # --- animation -----------------------------------------------------------------------------------
@@ -301,11 +295,7 @@ class Scene:
         ring1, ring3 = (float(r) for r in g.ring_inner_x)
         lo = np.minimum((v.ground[frames] - ring1).min(axis=0), (v.R3[frames, :2] - ring3).min(axis=0))
         hi = np.maximum((v.ground[frames] + ring1).max(axis=0), (v.R3[frames, :2] + ring3).max(axis=0))
-        span = 100 * (hi - lo).max() / 2 + 2.0
-        mid = 50 * (hi + lo)
-        plan.set_xlim(mid[0] - span, mid[0] + span)
-        plan.set_ylim(mid[1] - span, mid[1] + span)
-        plan.set_aspect("equal")
+        _square(plan, 50 * (hi + lo), 100 * (hi - lo).max() / 2 + 2.0)
         plan.set_xlabel("x (cm)")
         plan.set_ylabel("y (cm)")
         plan.set_title("plan: rings of RB1 (solid), RB3 (dashed)", fontsize=9)

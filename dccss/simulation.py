@@ -171,8 +171,11 @@ def simulate_spatial(geometry, excitation, *, model="compliant", dt, theta2_0=0.
             if capacity != "continue" and spatial.beyond_ring(step.pose, dev):
                 break
     except ConvergenceError as err:
-        h = spatial.collect(records) if records else None
-        failure = _explain(err, geometry, h and spatial.clearances(h["G"], h["Q"], h["R1"], h["R3"], dev), times)
+        gaps = None
+        if records:
+            h = spatial.collect(records)
+            gaps = spatial.clearances(h["G"], h["Q"], h["R1"], h["R3"], dev)
+        failure = _explain(err, geometry, gaps, times)
         if on_failure == "raise" or not records:
             raise failure from None
     ds = spatial_dataset(model, spatial.collect(records), geometry, times[:len(records)], excitation,
