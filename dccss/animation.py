@@ -55,6 +55,7 @@ SPIKE_LENGTH = 0.03  # automatic exaggeration: the largest interpenetration draw
 _DEVICE = (0.225, 0.405, 0.55, 0.455)
 _INSETS = {"C": (0.012, 0.655), "D": (0.853, 0.655), "A": (0.012, 0.405), "B": (0.853, 0.405)}
 _INSET_SIZE = (0.135, 0.205)
+_LABEL_STRIP = 13.0 / (72 * FIGSIZE[1] * _INSET_SIZE[1])  # a zoom window's label strip, 13 pt (axes fraction)
 # the status lines above the device: (label, x of the value) at the end of the step and of sticking
 _STATUS = ({"t": ("t =", 0.25), "step": ("step", 0.345), "Xg": ("$X_g$ =", 0.475),
             "theta2": (r"$\theta^2$ =", 0.6), "rise": ("rise =", 0.72)},
@@ -339,6 +340,8 @@ class Scene:
         return np.vstack(pts)
 
     def _insets(self, frames):
+        from matplotlib.transforms import Bbox, TransformedBbox
+
         from .drawing import I_LABEL, _length_unit
 
         self.zoom = {}
@@ -349,14 +352,17 @@ class Scene:
             bodies = self._bodies(ins, alpha=0.75)
             segment = self._add(ins.plot([], [], color=SPIKE_COLOUR, lw=1.8, solid_capstyle="butt")[0])
             point = self._add(ins.plot([], [], "o", color=SPIKE_COLOUR, ms=3, gid=f"zoom_{c}")[0])
+            # the moving parts stay above the strip of the window's label, which is then drawn once
+            above = TransformedBbox(Bbox.from_extents(0, _LABEL_STRIP, 1, 1), ins.transAxes)
+            for artist in (*bodies.values(), segment, point):
+                artist.set_clip_box(above)
             self.dynamic += ins.spines.values()  # over the bodies
             ins.set_aspect("equal")
             ins.set_xticks([])
             ins.set_yticks([])
             factor, unit = _length_unit(2 * half)
-            self._add(ins.text(0.5, 0.03, f"window {_number(factor * 2 * half)} {unit} wide", fontsize=7,
-                               transform=ins.transAxes, ha="center", va="bottom",
-                               bbox=dict(fc="white", ec="none", alpha=0.8, pad=1)))
+            ins.text(0.5, _LABEL_STRIP / 2, f"window {_number(factor * 2 * half)} {unit} wide", fontsize=7,
+                     transform=ins.transAxes, ha="center", va="center")
             title = self._add(_field(self.fig, 0.36, 1.04, f"{I_LABEL[c]} =", ins.transAxes, fontsize=8.5))
             self._add(self.ax.indicate_inset_zoom(ins, edgecolor="0.5", alpha=0.6, lw=0.6))
             self.zoom[c] = (ins, bodies, segment, point, title, half)

@@ -60,11 +60,14 @@ def freeze(fig):
     data to its last bit, results at round-off differ in their last bits between machines, and the
     PDF prints tick positions to 1e-10 pt. The layout solver's last digits vary between processes:
     the frozen axes positions are rounded so that the PDF coordinates (1e-6 pt) are the same in
-    every run. Each save then draws only once."""
+    every run. Each save then draws only once, and the layout costs no draw of its own: the
+    layout engine runs by itself (what a draw would do first), on the renderer of the PNG."""
     for ax in fig.axes:
         for get, set_ in ((ax.get_xlim, ax.set_xlim), (ax.get_ylim, ax.set_ylim)):
             set_(*(float(f"{v:.{LIMIT_DIGITS}g}") for v in get()))
-    fig.draw_without_rendering()
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        engine.execute(fig)
     fig.set_layout_engine(None)
     for ax in fig.axes:
         ax.set_position([round(v, 6) for v in ax.get_position(original=False).bounds], which="both")

@@ -14,7 +14,7 @@ import yaml
 from dccss.case import geometry_from
 from dccss.drawing import save
 from dccss.excitation import Sine
-from dccss.paper.figures import KINDS, Panel, figure_spec, figure_specs, render
+from dccss.paper.figures import DRAW, KINDS, Panel, figure_spec, figure_specs, render
 from dccss.simulation import breakaway, simulate
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config/config.yaml").read_text())
@@ -71,9 +71,10 @@ def letters(fig):
 
 def test_registry():
     assert sorted(SPECS) == sorted(EXPECTED)
-    for kind in KINDS.values():
+    assert sorted(DRAW) == sorted(KINDS)  # every kind a spec may name is drawn, and nothing else
+    for name, kind in KINDS.items():
         assert kind.data in ("breakaway", "cases") and 1 <= kind.panels[0] <= kind.panels[1]
-        assert kind.draw.__doc__
+        assert DRAW[name].__doc__
     for spec in SPECS.values():
         assert spec.kind in KINDS and spec.title and "\n" not in spec.title
         assert KINDS[spec.kind].panels[0] <= len(spec.panels) <= KINDS[spec.kind].panels[1]
@@ -151,3 +152,15 @@ def test_rendering_is_reproducible(datasets, tmp_path):
              tmp_path / f"{name}.png", tmp_path / f"{name}.pdf")
     for suffix in (".png", ".pdf"):
         assert (tmp_path / f"a{suffix}").read_bytes() == (tmp_path / f"b{suffix}").read_bytes()
+
+
+def test_figure_specs_parse_without_matplotlib():
+    """The workflow checks its figures: section when it builds the DAG; that must not import matplotlib
+    (it would cost every snakemake start, dry runs included, about 0.4 s)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; import dccss.case, dccss.paper.specs, dccss.paper.validation; "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"

@@ -4,7 +4,7 @@ import re
 from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError, geometry_from
-from dccss.paper.figures import Runs, SpecError, figure_specs
+from dccss.paper.specs import Runs, SpecError, figure_specs
 
 
 def dt_label(dt):
@@ -110,7 +110,7 @@ def one_of(names):
     return "|".join(re.escape(name) for name in names)
 
 
-FIGURES = check_config()  # {figure: dccss.paper.figures.FigureSpec}
+FIGURES = check_config()  # {figure: dccss.paper.specs.FigureSpec}
 
 
 def all_cases():

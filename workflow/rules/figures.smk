@@ -30,6 +30,7 @@ for group, figs in FIGURE_GROUPS.items():
 
 
 rule animate:
+    priority: 1  # the longest jobs first
     input:
         animation_input,
     output:

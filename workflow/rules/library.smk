@@ -12,7 +12,7 @@ import dccss
 
 LIBRARY = Path(dccss.__file__).parent
 #: modules that draw or check results (and the command line): the simulations do not run them
-DRAWING = ("drawing.py", "animation.py", "paper/figures.py", "studies/plots.py")
+DRAWING = ("drawing.py", "animation.py", "paper/figures.py", "paper/specs.py", "studies/plots.py")
 NOT_COMPUTING = DRAWING + ("paper/validation.py", "cli.py")
 
 
@@ -30,7 +30,7 @@ def source_hash(include=None, exclude=()):
 
 
 COMPUTE_SOURCE = source_hash(exclude=NOT_COMPUTING)
-FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py"))
+FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py", "paper/specs.py"))
 STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py"))
 ANIMATION_SOURCE = source_hash(include=("drawing.py", "animation.py"))
 VALIDATION_SOURCE = source_hash(include=("paper/validation.py",))

@@ -7,8 +7,10 @@ wildcard_constraints:
 
 
 # one job per (case set, prototype, model) writes one file per time step: every figure and check
-# reads both, so this costs no extra reruns and saves a process start per case
+# reads both, so this costs no extra reruns and saves a process start per case. The simulations
+# (about 1 s each) run first, so that the figures and animations (3-6 s) keep both cores busy to the end.
 rule simulate:
+    priority: 2
     output:
         [f"results/cases/{{case_set}}/{{proto}}_{{model}}_dt{dt_label(dt)}.nc" for dt in config["dt"]],
     params:
@@ -23,6 +25,7 @@ rule simulate:
 
 
 rule breakaway:
+    priority: 2
     output:
         "results/breakaway/{proto}_{normals}.nc",
     params:
