@@ -16,14 +16,16 @@ Each runs through the package's entry points with DCCSS_BACKEND set to the backe
 cold_s is the first call in the process (the compiled backend: loading its kernels from the
 cache), warm_s the second; the numpy backend runs once (it has nothing to warm up). For ``run``
 cold_s is a process with an empty kernel cache (a temporary NUMBA_CACHE_DIR: it compiles), warm_s
-one that loads them. Lines:
+the best of ``--repeat`` processes that load them (numpy: the best of as many, alternating with
+them). Lines:
 
     sweep backend=numba model=compliant N=10000 steps=1000 case_steps_per_s=... peak_mem_mb=... cold_s=... warm_s=...
     ratio sweep model=compliant N=10000 numba_over_numpy=...
-    run backend=numba model=stick_slip steps=30000 cold_s=... warm_s=...
+    run backend=numba model=stick_slip steps=30000 cold_s=... warm_s=... processes=3 all_s=...
     ratio run model=stick_slip steps=30000 numba_over_numpy=...   (numpy's process time over numba's, warm)
 
 Run: python benchmarks/backends.py [--sizes 10000] [--big 100000] [--steps 1000] [--history-steps 30000]
+     [--repeat 3] [--parts compile sweep history run]
 """
 
 import argparse
@@ -147,6 +149,7 @@ def main():
     parser.add_argument("--steps", type=int, default=1000)
     parser.add_argument("--history-steps", type=int, default=30000)
     parser.add_argument("--no-compile", action="store_true", help="skip the empty-cache compile measurement")
+    parser.add_argument("--repeat", type=int, default=3, help="processes per backend for `run` (the best counts)")
     parser.add_argument("--parts", nargs="+", default=PARTS, choices=PARTS, help="what to measure (default: all)")
     args = parser.parse_args()
     if args.no_compile:
@@ -186,14 +189,21 @@ def _history(args):
 
 
 def _run(args):
-    seconds = {"numpy": [cli_run("numpy", args.history_steps)]}
+    """numpy and numba processes alternate (the same machine load for both); each backend's time is
+    the best of ``--repeat`` processes, as timeit reports (the machine's noise only ever adds)."""
+    seconds = {"numpy": [], "numba": []}
     with tempfile.TemporaryDirectory() as cache:  # an empty kernel cache: the first process compiles
-        seconds["numba"] = [cli_run("numba", args.history_steps, cache), cli_run("numba", args.history_steps, cache)]
-    for backend in ("numpy", "numba"):
-        print(f"run backend={backend} model=stick_slip steps={args.history_steps} {_times(seconds[backend])[2]}",
-              flush=True)
+        cold = cli_run("numba", args.history_steps, cache)
+        for _ in range(args.repeat):
+            seconds["numpy"].append(cli_run("numpy", args.history_steps))
+            seconds["numba"].append(cli_run("numba", args.history_steps, cache))
+    best = {backend: min(times) for backend, times in seconds.items()}
+    for backend, times in seconds.items():
+        cold_s = f"cold_s={cold:.3f} " if backend == "numba" else ""
+        print(f"run backend={backend} model=stick_slip steps={args.history_steps} {cold_s}warm_s={best[backend]:.3f} "
+              f"processes={len(times)} all_s={','.join(f'{t:.2f}' for t in times)}", flush=True)
     print(f"ratio run model=stick_slip steps={args.history_steps} "
-          f"numba_over_numpy={seconds['numpy'][0] / seconds['numba'][1]:.1f}", flush=True)
+          f"numba_over_numpy={best['numpy'] / best['numba']:.1f}", flush=True)
 
 
 if __name__ == "__main__":
