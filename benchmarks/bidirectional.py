@@ -29,7 +29,8 @@ def main():
             case = Path(tmp) / f"{model}.yaml"
             case.write_text(yaml.safe_dump({
                 "prototype": "DFP1", "dt": 0.005, "model": model,
-                "excitation": {"kind": "record", "file": [str(RECORDS / "synthetic.AT2"), str(RECORDS / "synthetic_y.AT2")],
+                "excitation": {"kind": "record",
+                               "file": [str(RECORDS / "synthetic.AT2"), str(RECORDS / "synthetic_y.AT2")],
                                "window": [0.0, 10.0], "baseline": "linear"}}))
             best = float("inf")
             for _ in range(args.repeats):

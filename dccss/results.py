@@ -201,7 +201,8 @@ def spatial_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="within_capacity capacity_exceeded")
     stages = "stick_G" in history
     last = " (its last phase)" if stages else ""
-    data["newton_iterations"] = _var(t, history["newton_iterations"], "1", f"Newton-Raphson iterations of the step{last}")
+    data["newton_iterations"] = _var(t, history["newton_iterations"], "1",
+                                     f"Newton-Raphson iterations of the step{last}")
     data["newton_residual"] = _var(t, history["residual"], "m", f"final max |constraint residual|{last}")
     if stages:
         when = " at the end of the sticking phase"

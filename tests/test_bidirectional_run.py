@@ -2,8 +2,6 @@
 
 import math
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -12,9 +10,8 @@ import xarray as xr
 import yaml
 
 from dccss import cli, simulation
+from dccss.excitation import Oriented, PlaneTable, Sine
 from dccss.files import write_netcdf
-from dccss.excitation import Oriented, PlaneTable, Sine, step_times
-from dccss.mechanics import models
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.newton import ConvergenceError, NewtonOptions
 from dccss.paper.prototypes import DFP1, DFP2

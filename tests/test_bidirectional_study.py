@@ -1,11 +1,9 @@
 """Studies with bidirectional input: azimuth and component sweep axes, record pairs, the shipped example."""
 
-from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
-import yaml
 from conftest import ROOT, changed
 
 from dccss.case import CaseError

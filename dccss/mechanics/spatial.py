@@ -47,7 +47,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .newton import ConvergenceError, NewtonOptions, SingularJacobianError, STALLED
+from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
 
 Z = np.array([0.0, 0.0, 1.0])
 SPATIAL_MODELS = ("compliant", "stick_slip")
@@ -643,11 +643,11 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
     """Per-case summaries of a batch of bidirectional cases, with the keys and conventions of
     ``dccss.studies.sweep.summarize`` (one case after another: histories in space are not batched).
 
-    Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,). Under bidirectional motion
-    |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and ``theta2_end`` the residual
-    tilt (>= 0); the corners A, B, C, D are the trailing and leading rim points of each step's
-    section on RB1 and on RB3 (for motion along +x, the planar corners); ``sticking_rotation_max``
-    is the largest angle the pad turns through in a sticking phase."""
+    Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,).
+    Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and
+    ``theta2_end`` the residual tilt (>= 0); the corners A, B, C, D are the trailing and leading
+    rim points of each step's section on RB1 and on RB3 (for motion along +x, the planar corners);
+    ``sticking_rotation_max`` is the largest angle the pad turns through in a sticking phase."""
     from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
 
     if capacity not in CAPACITY_POLICIES:

@@ -2,10 +2,10 @@
 
 What each figure shows is data: a ``FigureSpec`` (parsed from the ``figures:`` section of a study
 configuration by ``figure_spec``, in ``dccss.paper.specs``) names its kind, title and panels, and
-``DRAW`` maps each kind to the function that draws it. Each figure is a plain ``matplotlib.figure.Figure`` (no pyplot, no
-global state; freed when unreferenced). Datasets are those of ``dccss.simulate`` ("cases") and
-``dccss.breakaway`` ("breakaway"); their values are SI (angles in degrees) and are converted to
-cm, mm or µm only for plotting.
+``DRAW`` maps each kind to the function that draws it. Each figure is a plain
+``matplotlib.figure.Figure`` (no pyplot, no global state; freed when unreferenced). Datasets are
+those of ``dccss.simulate`` ("cases") and ``dccss.breakaway`` ("breakaway"); their values are SI
+(angles in degrees) and are converted to cm, mm or µm only for plotting.
 
 Typical use::
 
