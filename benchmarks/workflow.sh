@@ -10,6 +10,9 @@
 #                            and dccss, from `git archive`) in the same run, alternating with this
 #                            checkout's, so that the two are compared under the same machine load
 #   REPEAT=<n>               run each timing n times (default 1)
+#   CHECKOUT_ARGS="..."      more snakemake arguments for this checkout's runs, e.g. "--configfile
+#                            my.yaml" with a config that draws what BASELINE drew (a revision without
+#                            the animations: config/config.yaml without its animations section)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cache="$(mktemp -d)"
@@ -26,7 +29,7 @@ if [ -n "${BASELINE:-}" ]; then
   labels+=("$(git -C "$root" rev-parse --short "$BASELINE")")
 fi
 
-reproduce() {  # reproduce SOURCE LABEL CACHE
+reproduce() {  # reproduce SOURCE LABEL CACHE [SNAKEMAKE ARGUMENTS...]
   local work
   work="$(mktemp -d)"
   cp -r "$1/Snakefile" "$1/config" "$1/workflow" "$1/profiles" "$work/"
@@ -34,7 +37,8 @@ reproduce() {  # reproduce SOURCE LABEL CACHE
     cd "$work"
     export PYTHONPATH="$1"  # that source's dccss, before the installed one
     start=$(date +%s.%N)
-    "$root/.venv/bin/snakemake" --profile profiles/default --quiet all > snakemake.out 2>&1 || { tail -20 snakemake.out; exit 1; }
+    "$root/.venv/bin/snakemake" --profile profiles/default --quiet all "${@:4}" > snakemake.out 2>&1 ||
+      { tail -20 snakemake.out; exit 1; }
     end=$(date +%s.%N)
     numba=$({ grep -rl "backend numba" logs 2>/dev/null || true; } | wc -l)
     printf 'workflow full_reproduction source=%s backend=%s cache=%s seconds=%.1f files_nc=%d files_png=%d jobs_on_numba=%d\n' \
@@ -52,7 +56,12 @@ for ((r = 0; r < ${REPEAT:-1}; r++)); do
       else
         PYTHONPATH="${sources[$k]}" "$root/.venv/bin/python" -m dccss.mechanics.compiled
       fi
-      reproduce "${sources[$k]}" "${labels[$k]}" "$mode"
+      if [ "$k" = 0 ]; then
+        # shellcheck disable=SC2086  # CHECKOUT_ARGS is split into words on purpose
+        reproduce "${sources[$k]}" "${labels[$k]}" "$mode" ${CHECKOUT_ARGS:-}
+      else
+        reproduce "${sources[$k]}" "${labels[$k]}" "$mode"
+      fi
     done
   done
 done
