@@ -155,8 +155,20 @@ def _read_csv(path):
     return path, header, data, columns
 
 
+class _Sampled:
+    """The time range of an excitation given as samples at ``time`` (s)."""
+
+    @property
+    def t_start(self):
+        return float(self.time[0])
+
+    @property
+    def t_end(self):
+        return float(self.time[-1])
+
+
 @dataclass(frozen=True, eq=False)
-class Table:
+class Table(_Sampled):
     """Sampled X_g: linear interpolation between samples; the velocity is the interpolated
     second-order central difference of the samples (numpy.gradient)."""
 
@@ -183,14 +195,6 @@ class Table:
         return cls(data[:, header.index("time")], data[:, header.index("displacement")],
                    source=str(path))
 
-    @property
-    def t_start(self):
-        return float(self.time[0])
-
-    @property
-    def t_end(self):
-        return float(self.time[-1])
-
     def displacement(self, t):
         return np.interp(t, self.time, self.displacement_samples)
 
@@ -203,7 +207,7 @@ class Table:
 
 
 @dataclass(frozen=True, eq=False)
-class PlaneTable:
+class PlaneTable(_Sampled):
     """Sampled two-component ground displacement (x, y) (m): each component is interpolated
     linearly between samples; the velocity is the interpolated second-order central difference
     of each component's samples (numpy.gradient), as in :class:`Table`."""
@@ -231,14 +235,6 @@ class PlaneTable:
             raise ValueError(f"table excitation: {str(path)!r} has one component (columns {header}), not the "
                              f"columns 'time, x, y' of a two-component table")
         return cls(*(data[:, header.index(c)] for c in ("time", "x", "y")), source=str(path))
-
-    @property
-    def t_start(self):
-        return float(self.time[0])
-
-    @property
-    def t_end(self):
-        return float(self.time[-1])
 
     @property
     def displacement_samples(self) -> np.ndarray:
