@@ -10,6 +10,8 @@
 #                            and dccss, from `git archive`) in the same run, alternating with this
 #                            checkout's, so that the two are compared under the same machine load
 #   REPEAT=<n>               run each timing n times (default 1)
+#   ARGS="..."               more snakemake arguments for every run, e.g. "--configfile
+#                            config/studies/bidirectional.yaml" to time a study instead
 #   CHECKOUT_ARGS="..."      more snakemake arguments for this checkout's runs, e.g. "--configfile
 #                            my.yaml" with a config that draws what BASELINE drew (a revision without
 #                            the animations: config/config.yaml without its animations section)
@@ -58,9 +60,10 @@ for ((r = 0; r < ${REPEAT:-1}; r++)); do
       fi
       if [ "$k" = 0 ]; then
         # shellcheck disable=SC2086  # CHECKOUT_ARGS is split into words on purpose
-        reproduce "${sources[$k]}" "${labels[$k]}" "$mode" ${CHECKOUT_ARGS:-}
+        reproduce "${sources[$k]}" "${labels[$k]}" "$mode" ${ARGS:-} ${CHECKOUT_ARGS:-}
       else
-        reproduce "${sources[$k]}" "${labels[$k]}" "$mode"
+        # shellcheck disable=SC2086
+        reproduce "${sources[$k]}" "${labels[$k]}" "$mode" ${ARGS:-}
       fi
     done
   done

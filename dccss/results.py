@@ -222,7 +222,7 @@ def spatial_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
                                                "Newton-Raphson iterations of the sticking phase")
         data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
                                              "final max |constraint residual| of the sticking phase")
-    title = spatial.REGISTRY[model].title
+    title = models.model(model).title
     ds = xr.Dataset(data, coords={TIME: time_coordinate(times)})
     ds.attrs = global_attrs(f"DCCSS kinematics under bidirectional ground motion, {title} model",
                             f"{title} model, spatial", model=model, motion="bidirectional", normals="signed",

@@ -37,7 +37,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         the last converged step, with the attributes ``failed`` = 1, ``failure_time_s`` (the
         step that failed) and ``failure_message``.
     attrs : extra global attributes (e.g. a case id).
-    progress : optional callable ``progress(n, N)`` called after each step n of N.
+    progress : optional callable ``progress(n, N)`` called after each step n of N (once, when the
+        history is done, where compiled kernels run it: long planar runs and every spatial run).
 
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
@@ -153,34 +154,30 @@ def simulate_spatial(geometry, excitation, *, model="compliant", dt, theta2_0=0.
     from .mechanics import spatial
     from .results import spatial_dataset
 
-    if model not in spatial.REGISTRY:
+    if model not in spatial.STEPPERS:
         raise ValueError(f"model must be one of {spatial.SPATIAL_MODELS}, got {model!r}")
     if normals != "signed":
         raise ValueError(f"normals: the spatial model (bidirectional ground motion) uses signed normals only, got "
                          f"{normals!r} (unsigned normals reproduce the planar paper's computation)")
     _check_policies(capacity, on_failure)
-    dev = spatial.Device.of(geometry)
     times = step_times(excitation, dt)
-    records, failure = [], None
+    failure = None
     try:
-        for step in spatial.steps(model, geometry, excitation.displacement(times), theta2_0,
-                                  azimuth=float(excitation.azimuth), options=options, times=times):
-            records.append(step)
-            if progress is not None:
-                progress(step.n, len(times) - 1)
-            if capacity != "continue" and spatial.beyond_ring(step.pose, dev):
-                break
+        history = spatial.run(model, geometry, excitation.displacement(times), theta2_0,
+                              azimuth=float(excitation.azimuth), options=options, times=times,
+                              stop_at_ring=capacity != "continue")
     except ConvergenceError as err:
-        gaps = None
-        if records:
-            h = spatial.collect(records)
-            gaps = spatial.clearances(h["G"], h["Q"], h["R1"], h["R3"], dev)
+        history = getattr(err, "history", None)
+        gaps = None if history is None else (history["clearance_1"], history["clearance_3"])
         failure = _explain(err, geometry, gaps, times)
-        if on_failure == "raise" or not records:
+        if on_failure == "raise" or history is None:
             raise failure from None
-    ds = spatial_dataset(model, spatial.collect(records), geometry, times[:len(records)], excitation,
-                         theta2_0=theta2_0, dt=dt, tol=options.tol, attrs=attrs)
-    return _settle(ds, geometry, capacity, failure, times, len(records))
+    steps = len(history["G"])
+    if progress is not None:
+        progress(steps - 1, len(times) - 1)
+    ds = spatial_dataset(model, history, geometry, times[:steps], excitation, theta2_0=theta2_0, dt=dt,
+                         tol=options.tol, attrs=attrs)
+    return _settle(ds, geometry, capacity, failure, times, steps)
 
 
 def _settle(ds, geometry, capacity, failure, times, n_steps):

@@ -122,7 +122,7 @@ def test_compliant_tilt_is_the_closed_form_within_the_interpenetration_order():
         _, X = circle(dt)
         h = spatial.run("compliant", DFP1, X)
         d = spatial.diagnostics(h, DFP1)
-        dev = spatial.Device.of(DFP1)
+        dev = spatial.device(DFP1)
         horizontal = np.linalg.norm((h["R1"] - h["R3"])[:, :2], axis=-1)
         exact = np.arcsin(horizontal / dev.L)
         error = np.max(np.abs(d["tilt"] - exact))
@@ -169,84 +169,99 @@ def test_the_spin_after_an_orbit_is_the_solid_angle_its_axis_encloses(model):
     assert abs(spin - omega) < (1e-9 if model == "compliant" else 1e-4) * abs(omega)
 
 
+def pose(h, n, prefix=""):
+    """Step n of a history as a ``spatial.Pose`` (tuples)."""
+    return spatial.Pose(*(tuple(h[prefix + k][n]) for k in ("R1", "G")), tuple(map(tuple, h[prefix + "Q"][n].T)),
+                        tuple(h[prefix + "R3"][n]))
+
+
 @pytest.mark.parametrize("device", list(DEVICES))
 def test_sticking_pins_the_diagonal_and_slipping_restores_L(device):
     g = DEVICES[device]
-    dev = spatial.Device.of(g)
+    dev = spatial.device(g)
     _, X = ellipse()
-    records = list(spatial.steps("stick_slip", g, X))
-    for prev, step in zip(records[:-1], records[1:]):
-        v1, v3 = spatial.pinned(prev.pose, dev, step.m)
-        before = (prev.pose.G + prev.pose.Q @ v1, prev.pose.G + prev.pose.Q @ v3)
-        after = (step.stick.G + step.stick.Q @ v1, step.stick.G + step.stick.Q @ v3)
-        assert np.max(np.abs(after[0] - before[0] - (step.stick.R1 - prev.pose.R1))) < 1e-11
-        assert np.max(np.abs(after[1] - before[1] - (step.stick.R3 - prev.pose.R3))) < 1e-11
+    h = spatial.run("stick_slip", g, X)
+    for n in range(1, len(X)):
+        v1, v3 = (np.array(v) for v in spatial.pinned(pose(h, n - 1), dev, tuple(h["m"][n])))
+        Q0, G0, Qs, Gs = h["Q"][n - 1], h["G"][n - 1], h["stick_Q"][n], h["stick_G"][n]
+        before = (G0 + Q0 @ v1, G0 + Q0 @ v3)
+        after = (Gs + Qs @ v1, Gs + Qs @ v3)
+        assert np.max(np.abs(after[0] - before[0] - (h["stick_R1"][n] - h["R1"][n - 1]))) < 1e-11
+        assert np.max(np.abs(after[1] - before[1] - (h["stick_R3"][n] - h["R3"][n - 1]))) < 1e-11
         # the smallest rotation: none about the pinned diagonal
-        turn = step.stick.Q @ prev.pose.Q.T
+        turn = Qs @ Q0.T
         w = np.array([turn[2, 1] - turn[1, 2], turn[0, 2] - turn[2, 0], turn[1, 0] - turn[0, 1]])
-        assert abs(w @ spatial.unit(before[1] - before[0])) < 1e-12
-        assert np.allclose(step.stick.R3[:2], records[0].pose.R3[:2], atol=0, rtol=0)
-        C1, C3 = step.pose.C1(dev), step.pose.C3(dev)
+        diagonal = before[1] - before[0]
+        assert abs(w @ diagonal / np.linalg.norm(diagonal)) < 1e-12
+        assert np.array_equal(h["stick_R3"][n, :2], h["R3"][0, :2])
+        C1, C3 = h["R1"][n] + dev.c1 * np.array(spatial.Z), h["R3"][n] + dev.c3 * np.array(spatial.Z)
         assert abs(np.linalg.norm(C3 - C1) - dev.L) < 1e-10
         # no spin in slipping
-        turn = step.pose.Q @ step.stick.Q.T
+        turn = h["Q"][n] @ Qs.T
         w = np.array([turn[2, 1] - turn[1, 2], turn[0, 2] - turn[2, 0], turn[1, 0] - turn[0, 1]])
-        assert abs(w @ step.stick.axis) < 1e-12
+        assert abs(w @ Qs[:, 2]) < 1e-12
 
 
 # --- Jacobians against finite differences ------------------------------------------------------
 def _phases():
     """One phase of each kind, built mid-way through a bidirectional history of UNEQUAL."""
-    dev = spatial.Device.of(UNEQUAL)
+    dev = spatial.device(UNEQUAL)
     _, X = ellipse()
-    records = list(spatial.steps("stick_slip", UNEQUAL, X[:80]))
-    prev, step = records[-2], records[-1]
-    R1 = step.stick.R1
-    v1, v3 = spatial.pinned(prev.pose, dev, step.m)
-    contacts = []
-    for P, C, r, R in zip(spatial.section(prev.pose.Q, prev.pose.G, dev, step.m),
-                          (prev.pose.C1(dev),) * 2 + (prev.pose.C3(dev),) * 2, (dev.R1,) * 2 + (dev.R3,) * 2,
-                          (prev.pose.R1,) * 2 + (prev.pose.R3,) * 2):
-        p, n = spatial.project(P, C, r)
-        contacts.append((p - R, n))
-    return {
-        "compliant": spatial.Compliant(dev, prev.pose, R1, step.m, contacts),
-        "sticking": spatial.Sticking(dev, prev.pose, R1, records[0].pose.R3[:2], v1, v3, spatial.STICK_LABELS),
-        "slipping": spatial.Slipping(dev, step.stick, step.e1, v1, v3, spatial.SLIP_LABELS),
-    }, prev.pose
+    h = spatial.run("stick_slip", UNEQUAL, X[:80])
+    prev, n = pose(h, 78), 79
+    R1, m, e1 = tuple(h["R1"][n]), tuple(h["m"][n]), tuple(h["e1"][n])
+    v1, v3 = spatial.pinned(prev, dev, m)
+    phases = {
+        "compliant": (spatial.compliant_rows, spatial.compliant_phase(dev, prev, R1, m, spatial.Z)),
+        "sticking": (spatial.sticking_rows, spatial.sticking_phase(dev, prev, R1, tuple(h["R3"][0, :2]), v1, v3)),
+        "slipping": (spatial.slipping_rows, spatial.slipping_phase(dev, pose(h, n, "stick_"), e1, v1, v3)),
+    }
+    return phases, prev
 
 
 @pytest.mark.parametrize("name", ["compliant", "sticking", "slipping"])
 def test_jacobian_matches_finite_differences(name):
-    phases, pose = _phases()
-    phase = phases[name]
+    phases, start = _phases()
+    rows, phase = phases[name]
+
+    def g_J(x):
+        g, J = rows(phase, tuple(x))
+        return np.array(g), np.array(J)
+
     rng = np.random.default_rng(7)
-    n = 5 if name == "slipping" else 6
     for _ in range(3):
-        x = np.concatenate([pose.G + rng.normal(scale=2e-3, size=3), rng.normal(scale=0.05, size=2),
-                            [pose.R3[2] + 1e-3]])[:n]
-        _, J = phase.rows(x)
+        x = np.concatenate([np.array(start.G) + rng.normal(scale=2e-3, size=3), rng.normal(scale=0.05, size=2),
+                            [start.R3[2] + 1e-3 if name != "slipping" else 0.0]])
+        _, J = g_J(x)
         h = 1e-6
         fd = np.empty_like(J)
-        for k in range(n):
-            e = np.zeros(n)
+        for k in range(6):
+            e = np.zeros(6)
             e[k] = h
-            fd[:, k] = (phase.rows(x + e)[0] - phase.rows(x - e)[0]) / (2 * h)
+            fd[:, k] = (g_J(x + e)[0] - g_J(x - e)[0]) / (2 * h)
         assert np.max(np.abs(J - fd)) < 1e-8 * max(1.0, np.max(np.abs(J)))
-        assert np.linalg.matrix_rank(J) == n
+        assert np.linalg.matrix_rank(J) == 6
 
 
 def test_left_jacobian_matches_finite_differences():
     rng = np.random.default_rng(3)
     for scale in (1e-9, 0.3, 2.0):
         w = rng.normal(scale=scale, size=3)
-        v = rng.normal(size=3)
-        Jl = spatial.left_jacobian(w)
+        v = tuple(rng.normal(size=3))
+
+        def turned(w, v=v):
+            return np.array(spatial.rotate(tuple(w), v))
+
         for k in range(3):
             e = np.zeros(3)
             e[k] = 1e-7
-            fd = (spatial.rotation(w + e) @ v - spatial.rotation(w - e) @ v) / 2e-7
-            assert np.max(np.abs(fd - np.cross(Jl[:, k], spatial.rotation(w) @ v))) < 1e-7
+            fd = (turned(w + e) - turned(w - e)) / 2e-7
+            Jk = np.array(spatial.left_jacobian(tuple(w), tuple(np.eye(3)[k])))
+            assert np.max(np.abs(fd - np.cross(Jk, turned(w)))) < 1e-7
+        # the columns of rotation(w) are the turned unit vectors, and Q is orthonormal
+        Q = np.array(spatial.rotation(tuple(w))).T
+        assert np.max(np.abs(Q.T @ Q - np.eye(3))) < 1e-14
+        assert np.max(np.abs(Q @ np.array(v) - turned(w))) < 1e-14
 
 
 # --- errors ------------------------------------------------------------------------------------
@@ -278,21 +293,21 @@ def test_a_step_solved_wholly_in_pi_pushes_rb3_off_its_guide():
     """Solved in the plane pi (RB3 rising along pi's in-plane normal to the increment), a circular
     orbit of 9.5 cm moves RB3 0.8 mm sideways at every step size; the consistent step keeps it on
     its guide. pi leans by psi = atan(d_perp / w): 3.15 deg at d_perp = 10 cm for DFP1."""
-    dev = spatial.Device.of(DFP1)
+    dev = spatial.device(DFP1)
     assert math.degrees(math.atan(0.1 / math.sqrt(dev.L ** 2 - 0.1 ** 2))) == pytest.approx(3.15, abs=0.01)
     drift = []
     for dt in (0.02, 0.005):
         _, X = circle(dt)
-        paper = spatial.collect(spatial.compliant_steps(DFP1, X, in_plane=True))
-        ours = spatial.collect(spatial.compliant_steps(DFP1, X))
+        paper = spatial.run("compliant", DFP1, X, in_plane=True)
+        ours = spatial.run("compliant", DFP1, X)
         assert np.array_equal(ours["R3"][:, :2], np.zeros_like(ours["R3"][:, :2]))
         drift.append(np.linalg.norm(paper["R3"][-1, :2] - paper["R3"][0, :2]))
     assert drift[0] == pytest.approx(0.817e-3, abs=0.005e-3)
     assert drift[1] == pytest.approx(drift[0], rel=1e-3)  # not a discretisation error
     # along a fixed azimuth pi is vertical and the two coincide
     _, x = sine()
-    paper = spatial.collect(spatial.compliant_steps(DFP1, along(x, 30.0), azimuth=math.radians(30.0), in_plane=True))
-    ours = spatial.collect(spatial.compliant_steps(DFP1, along(x, 30.0), azimuth=math.radians(30.0)))
+    paper = spatial.run("compliant", DFP1, along(x, 30.0), azimuth=math.radians(30.0), in_plane=True)
+    ours = spatial.run("compliant", DFP1, along(x, 30.0), azimuth=math.radians(30.0))
     assert np.max(np.abs(paper["R3"] - ours["R3"])) < 1e-12
 
 
@@ -309,3 +324,19 @@ def test_slipping_restores_compatibility_in_space(device):
         gaps.append(max(d["gap_1"].max(), d["gap_3"].max()))
     assert gaps[0] < 2e-5
     assert gaps[1] < gaps[0] / 3.5
+
+
+# --- the 6 x 6 solve -----------------------------------------------------------------------------
+def test_the_six_by_six_solve_is_lapacks_to_round_off_and_flags_a_singular_matrix():
+    rng = np.random.default_rng(11)
+    work = np.empty((6, 7))
+    for _ in range(20):
+        J = rng.normal(size=(6, 6)) * rng.choice([1e-3, 1.0, 1e3], size=6)  # rows of unlike scale
+        g = rng.normal(size=6)
+        ok, x = spatial.solve6(tuple(map(tuple, J)), tuple(g), work)
+        assert ok
+        expected = np.linalg.solve(J, g)
+        assert np.max(np.abs(np.array(x) - expected)) < 1e-10 * np.max(np.abs(expected))
+    J[:, 5] = 0.0  # a zero column: an exactly zero pivot
+    ok, _ = spatial.solve6(tuple(map(tuple, J)), tuple(g), work)
+    assert not ok

@@ -943,13 +943,16 @@ def _summaries(model, acc, count, capacity):
 
 
 def warm():
-    """Compile (or load) the kernels of both models into the on-disk cache: e.g. once before
-    parallel jobs that would each compile them (``python -m dccss.mechanics.compiled``)."""
+    """Compile (or load) the kernels of both models, planar and spatial, into the on-disk cache:
+    e.g. once before parallel jobs that would each compile them (``python -m
+    dccss.mechanics.compiled``)."""
     from ..paper.prototypes import DFP1
+    from . import spatial
 
     for model in models.MODELS:
         if model in HISTORY:
             run(model, DFP1, np.array([0.0, 1e-3]))
+        spatial.run(model, DFP1, np.array([[0.0, 0.0], [1e-3, 0.0]]))
 
 
 if __name__ == "__main__":

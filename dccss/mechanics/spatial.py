@@ -1,4 +1,4 @@
-"""Bidirectional ground motion: the three bodies in space, both models, one case.
+"""Bidirectional ground motion: the three bodies in space, both models, one case, compiled.
 
 The paper's planar model (``models``) moves RB1 along one line. Under a horizontal ground
 displacement X_g(t) in R^2 the pad tilts out of any fixed plane. This module is the
@@ -37,76 +37,162 @@ orthonormal and normal to the pad axis (compliant sliding, slipping: no spin) or
 diagonal (sticking: the smallest rotation). Derivatives of a rotated vector use the left
 Jacobian of SO(3): d/dw_j [Exp(w) v] = (J_l(w) k_j) x Exp(w) v. Every row is a length (m) and
 Newton-Raphson stops at max |g| <= tol, as the planar solver does.
+
+How it is written
+-----------------
+The equations are written once, in the scalar subset of Python that Numba compiles: vectors are
+3-tuples, a rotation is the tuple of its three columns, a pose is a ``Pose`` (R^1, G^2, Q, R^3)
+and a phase is a named tuple of what its rows hold fixed (``CompliantPhase``, ``StickingPhase``,
+``SlippingPhase``), with ``*_rows(phase, x)`` returning the residual g and the Jacobian dg/dx as
+tuples. Every phase has six unknowns x = (G^2, w_1, w_2, R^3_z); slipping, whose RB3 is fixed by
+Eq. 41, carries x_6 with the unit row x_6 = 0 so that one Newton loop and one 6 x 6 solve
+(Gaussian elimination with partial pivoting) serve all three. A whole history runs in one
+compiled call (``run``), which also evaluates per step the section's interpenetration and the
+clearances to the rings (the ring test of ``capacity="stop"``). The kernels are cached on disk
+(``cache=True``) and compiled once per machine.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, fields
+from typing import NamedTuple
 
 import numpy as np
+from numba import njit
 
 from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
 
-Z = np.array([0.0, 0.0, 1.0])
+Z = (0.0, 0.0, 1.0)
 SPATIAL_MODELS = ("compliant", "stick_slip")
 #: the section's rim points, in the order of the step's rows: lower trailing, lower leading,
 #: upper trailing, upper leading (the planar A, B, C, D for a positive increment along +x)
 RIM_POINTS = ("lower_trailing", "lower_leading", "upper_trailing", "upper_leading")
+#: the phases of a step (a failure names one)
+COMPLIANT, STICKING, SLIPPING = 0, 1, 2
+PHASE_NAMES = ("compliant sliding", "sticking", "slipping")
+#: Newton outcomes
+CONVERGED, NOT_CONVERGED, SINGULAR = 0, 1, 2
+LABELS = (
+    tuple(f"{p} rim point on the tangent plane at its previous contact point" for p in RIM_POINTS)
+    + ("out-of-plane compatibility of C^21 with C^1", "out-of-plane compatibility of C^23 with C^3"),
+    ("x of the trailing lower rim point pinned to RB1", "y of the trailing lower rim point pinned to RB1",
+     "z of the trailing lower rim point pinned to RB1", "x of the leading upper rim point pinned to RB3",
+     "y of the leading upper rim point pinned to RB3", "z of the leading upper rim point pinned to RB3"),
+    ("trailing lower rim point on its tangent plane", "leading upper rim point on its tangent plane",
+     "G^2 on the line C^1C^3 (Eq. 38)", "axis in the slip plane: C^21 with C^1",
+     "axis in the slip plane: C^23 with C^3", "RB3 held at Eq. 41 (a unit row)"),
+)
+
+#: IEEE semantics for a division by zero (as numpy); kernels cached on disk; helpers inlined
+jit = njit(cache=True, error_model="numpy", forceinline=True)
+#: the same for the generic functions that take a compiled function as an argument (``newton``'s
+#: rows, ``_history``'s stepper): numba cannot cache those (a function type does not survive on
+#: disk), so they are compiled into the cached kernels that call them
+generic = njit(error_model="numpy", forceinline=True)
 
 
-# --- rotations ---------------------------------------------------------------------------------
+# --- vectors (3-tuples) and rotations (tuples of columns) ----------------------------------------
+@jit
+def add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@jit
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+@jit
+def scale(s, a):
+    return (s * a[0], s * a[1], s * a[2])
+
+
+@jit
+def axpy(a, s, b):
+    """a + s b."""
+    return (a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2])
+
+
+@jit
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@jit
 def cross(a, b):
-    """a x b of two 3-vectors (numpy.cross is slow on single vectors)."""
-    a0, a1, a2 = a.tolist()
-    b0, b1, b2 = b.tolist()
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def skew(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+@jit
+def norm(a):
+    return math.sqrt(dot(a, a))
 
 
-def rotation(w) -> np.ndarray:
-    """Exp(w): the rotation by |w| about w / |w| (Rodrigues)."""
-    angle = math.sqrt(float(w @ w))
+@jit
+def unit(a):
+    return scale(1.0 / norm(a), a)
+
+
+@jit
+def apply(Q, v):
+    """Q v, Q given by its columns."""
+    return axpy(axpy(scale(v[0], Q[0]), v[1], Q[1]), v[2], Q[2])
+
+
+@jit
+def apply_t(Q, v):
+    """Q^T v."""
+    return (dot(Q[0], v), dot(Q[1], v), dot(Q[2], v))
+
+
+@jit
+def rotate(w, v):
+    """Exp(w) v: v turned by |w| about w / |w| (Rodrigues)."""
+    angle = norm(w)
     if angle == 0.0:
-        return np.eye(3)
-    K = skew(w / angle)
-    return np.eye(3) + math.sin(angle) * K + (1.0 - math.cos(angle)) * (K @ K)
+        return v
+    k = scale(1.0 / angle, w)
+    c, s = math.cos(angle), math.sin(angle)
+    return axpy(axpy(scale(c, v), s, cross(k, v)), (1.0 - c) * dot(k, v), k)
 
 
-def left_jacobian(w) -> np.ndarray:
-    """J_l(w) of SO(3): Exp(w + d) = Exp(J_l(w) d) Exp(w) + O(|d|^2)."""
-    angle2 = float(w @ w)
-    K = skew(w)
+@jit
+def rotation(w):
+    """Exp(w) as its columns."""
+    return (rotate(w, (1.0, 0.0, 0.0)), rotate(w, (0.0, 1.0, 0.0)), rotate(w, (0.0, 0.0, 1.0)))
+
+
+@jit
+def left_jacobian(w, k):
+    """J_l(w) k, with J_l the left Jacobian of SO(3): Exp(w + d) = Exp(J_l(w) d) Exp(w) + O(|d|^2)."""
+    angle2 = dot(w, w)
+    wk = cross(w, k)
+    wwk = cross(w, wk)
     if angle2 < 1e-16:
-        return np.eye(3) + 0.5 * K + (K @ K) / 6.0
+        return axpy(axpy(k, 0.5, wk), 1.0 / 6.0, wwk)
     angle = math.sqrt(angle2)
-    return np.eye(3) + (1.0 - math.cos(angle)) / angle2 * K + (angle - math.sin(angle)) / (angle2 * angle) * (K @ K)
+    return axpy(axpy(k, (1.0 - math.cos(angle)) / angle2, wk), (angle - math.sin(angle)) / (angle2 * angle), wwk)
 
 
+@jit
 def normal_basis(v):
     """Two unit vectors k_1, k_2 with (k_1, k_2, v/|v|) orthonormal."""
-    v = v / np.linalg.norm(v)
-    helper = np.array([1.0, 0.0, 0.0]) if abs(v[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    k1 = cross(v, helper)
-    k1 /= np.linalg.norm(k1)
+    v = unit(v)
+    helper = (1.0, 0.0, 0.0) if abs(v[0]) < 0.9 else (0.0, 1.0, 0.0)
+    k1 = unit(cross(v, helper))
     return k1, cross(v, k1)
 
 
-def rotation_about(axis, angle) -> np.ndarray:
-    return rotation(np.asarray(axis, float) / np.linalg.norm(axis) * angle)
+@jit
+def orientation(Q_ref, k1, k2, w1, w2):
+    """Q = Exp(w_1 k_1 + w_2 k_2) Q_ref and dQ/dw_j as the axes c_j: dv/dw_j = c_j x v."""
+    w = axpy(scale(w1, k1), w2, k2)
+    Q = (rotate(w, Q_ref[0]), rotate(w, Q_ref[1]), rotate(w, Q_ref[2]))
+    return Q, left_jacobian(w, k1), left_jacobian(w, k2)
 
 
-def unit(v):
-    return v / np.linalg.norm(v)
-
-
-# --- the device in space -----------------------------------------------------------------------
-@dataclass(frozen=True)
-class Device:
+# --- the device and its configurations -----------------------------------------------------------
+class Device(NamedTuple):
     """The lengths of a Geometry (scalar fields) that the spatial model uses (m)."""
 
     R1: float
@@ -123,315 +209,488 @@ class Device:
     ring3: float  # R^3 sin(alpha^3)
     rest3: float  # R^3_z at theta^2 = 0 (Eq. 41)
 
-    @classmethod
-    def of(cls, geometry) -> Device:
-        if np.ndim(geometry.L) != 0:
-            raise ValueError("the spatial model runs one case: geometry fields must be scalars")
-        (_, c1z), (_, c3z) = geometry.circle_centres
-        (_, y21), (_, y23) = geometry.pad_cap_centres
-        ring1, ring3 = geometry.ring_inner_x
-        return cls(float(geometry.R1), float(geometry.R3), float(geometry.A1), float(geometry.A3), float(geometry.B),
-                   float(c1z), float(c3z), float(y21), float(y23), float(geometry.L), float(ring1), float(ring3),
-                   float(geometry.Ry3_compatible(0.0)))
+
+def device(geometry) -> Device:
+    """The spatial model's lengths of a one-case Geometry."""
+    if np.ndim(geometry.L) != 0:
+        raise ValueError("the spatial model runs one case: geometry fields must be scalars")
+    (_, c1z), (_, c3z) = geometry.circle_centres
+    (_, y21), (_, y23) = geometry.pad_cap_centres
+    ring1, ring3 = geometry.ring_inner_x
+    return Device(*(float(v) for v in (geometry.R1, geometry.R3, geometry.A1, geometry.A3, geometry.B, c1z, c3z,
+                                       y21, y23, geometry.L, ring1, ring3, geometry.Ry3_compatible(0.0))))
 
 
-@dataclass(frozen=True)
-class Pose:
-    """A configuration in space: plate positions R^1, R^3 (3,), pad centre G^2 (3,) and rotation Q (3, 3)."""
+class Pose(NamedTuple):
+    """A configuration in space: plate positions R^1, R^3, pad centre G^2 (3-tuples, m) and the pad's
+    rotation Q (its three columns; the third is the pad axis)."""
 
-    R1: np.ndarray
-    G: np.ndarray
-    Q: np.ndarray
-    R3: np.ndarray
+    R1: tuple
+    G: tuple
+    Q: tuple
+    R3: tuple
 
-    def C1(self, dev):
-        return self.R1 + dev.c1 * Z
 
-    def C3(self, dev):
-        return self.R3 + dev.c3 * Z
+@jit
+def C1(pose, dev):
+    return axpy(pose.R1, dev.c1, Z)
 
-    @property
-    def axis(self):
-        return self.Q[:, 2]
+
+@jit
+def C3(pose, dev):
+    return axpy(pose.R3, dev.c3, Z)
 
 
 def start(geometry, Xg0, theta2_0=0.0, azimuth=0.0) -> Pose:
     """The compatible configuration at t_0: RB1 at X_g(t_0) (2,), the pad tilted by theta^2(t_0)
     (rad) in the vertical plane of ``azimuth`` (rad) as the planar model's Eq. 5 start."""
-    dev = Device.of(geometry)
-    h = np.array([math.cos(azimuth), math.sin(azimuth), 0.0])
-    R1 = np.array([Xg0[0], Xg0[1], 0.0])
+    dev = device(geometry)
+    h = (math.cos(azimuth), math.sin(azimuth), 0.0)
+    R1 = (float(Xg0[0]), float(Xg0[1]), 0.0)
     s, c = math.sin(theta2_0), math.cos(theta2_0)
-    G = R1 + dev.y21 * s * h + (dev.c1 - dev.y21 * c) * Z
-    R3 = R1 + dev.L * s * h + float(geometry.Ry3_compatible(theta2_0)) * Z
-    Q = rotation_about(cross(h, Z), theta2_0)
-    return Pose(R1, G, Q, R3)
+    G = axpy(axpy(R1, dev.y21 * s, h), dev.c1 - dev.y21 * c, Z)
+    R3 = axpy(axpy(R1, dev.L * s, h), float(geometry.Ry3_compatible(theta2_0)), Z)
+    return Pose(R1, G, rotation(scale(theta2_0, cross(h, Z))), R3)
 
 
-# --- the step's plane and section --------------------------------------------------------------
-def step_plane(pose, dev, increment, reference):
-    """(e1, m): the unit increment (``reference`` for a zero one) and the unit normal of pi."""
-    length = math.hypot(increment[0], increment[1])
-    e1 = np.array([increment[0] / length, increment[1] / length, 0.0]) if length > 0 else reference
-    return e1, unit(cross(e1, pose.C1(dev) - pose.C3(dev)))
+# --- the step's plane and section ----------------------------------------------------------------
+@jit
+def step_plane(pose, dev, dx, dy, reference):
+    """(e1, m): the unit increment (dx, dy) (``reference`` for a zero one) and the unit normal of pi."""
+    length = math.hypot(dx, dy)
+    e1 = (dx / length, dy / length, 0.0) if length > 0 else reference
+    return e1, unit(cross(e1, sub(C1(pose, dev), C3(pose, dev))))
 
 
+@jit
 def section(Q, G, dev, m):
     """The four rim points of the section by the plane normal m (order RIM_POINTS), in space."""
-    a = Q[:, 2]
+    a = Q[2]
     u = unit(cross(a, m))
-    low, up = G - dev.B * a, G + dev.B * a
-    return (low - dev.A1 * u, low + dev.A1 * u, up - dev.A3 * u, up + dev.A3 * u)
+    low, up = axpy(G, -dev.B, a), axpy(G, dev.B, a)
+    return axpy(low, -dev.A1, u), axpy(low, dev.A1, u), axpy(up, -dev.A3, u), axpy(up, dev.A3, u)
 
 
+@jit
 def project(point, centre, radius):
     """Radial projection of ``point`` onto the sphere (centre, radius): the contact point and the
     unit normal from it to the centre (Eq. 7)."""
-    d = point - centre
-    n = -d / np.linalg.norm(d)
-    return centre - radius * n, n
+    n = scale(-1.0 / norm(sub(point, centre)), sub(point, centre))
+    return axpy(centre, -radius, n), n
 
 
-# --- constraint sets ---------------------------------------------------------------------------
-class Phase:
-    """Rows g(x) (all lengths, m) on the unknowns x = (G^2 (3), w_1, w_2[, R^3_z]), with
-    Q = Exp(w_1 k_1 + w_2 k_2) Q_ref; ``rows(x)`` returns g (m,) and dg/dx (m, len(x))."""
-
-    name: str
-    labels: tuple
-
-    def __init__(self, Q_ref, spin_axis):
-        self.Q_ref = Q_ref
-        self.k = normal_basis(spin_axis)
-
-    def orientation(self, x):
-        w = x[3] * self.k[0] + x[4] * self.k[1]
-        Jl = left_jacobian(w)
-        return rotation(w) @ self.Q_ref, (Jl @ self.k[0], Jl @ self.k[1])
-
-    def rows(self, x):
-        raise NotImplementedError
+@jit
+def pinned(pose, dev, m):
+    """Pad-frame positions of the trailing lower and leading upper rim points of the section by
+    the plane normal m: the jammed diagonal of a stick-slip step (A-D or B-C in the plane)."""
+    P1, _, _, P3 = section(pose.Q, pose.G, dev, m)
+    return apply_t(pose.Q, sub(P1, pose.G)), apply_t(pose.Q, sub(P3, pose.G))
 
 
-def _point_rows(J, i, c, r, n=None):
-    """Fill row(s) i of J with d/dw_j of a body-fixed vector r (the point minus G^2), projected on
-    n if given: (c_j x r) . n."""
-    for j in range(2):
-        d = cross(c[j], r)
-        if n is None:
-            J[i:i + 3, 3 + j] = d
-        else:
-            J[i, 3 + j] = d @ n
+# --- the three phases: what each holds fixed, and its rows ---------------------------------------
+class CompliantPhase(NamedTuple):
+    """Compliant sliding in the plane pi of the step: rim points on the tangent planes at their
+    previous contact points (``points`` relative to their plates, ``normals``), cap centres in the
+    planes through C^1, C^3 normal to m; RB3 at R3_base + x_6 up."""
+
+    dev: Device
+    Q_ref: tuple
+    k1: tuple
+    k2: tuple
+    R1: tuple
+    m: tuple
+    points: tuple
+    normals: tuple
+    up: tuple
+    R3_base: tuple
 
 
-class Compliant(Phase):
-    """Compliant sliding in the plane pi of the step (see the module docstring)."""
+class StickingPhase(NamedTuple):
+    """The diagonal's rim points v1, v3 (pad frame) pinned to their plates (Eq. 31 in space): at
+    ``target1`` (moving with RB1) and ``target3`` (relative to RB3); RB3 on its guide at height x_6."""
 
-    name = "compliant sliding"
-    labels = tuple(f"{p} rim point on the tangent plane at its previous contact point" for p in RIM_POINTS) + (
-        "out-of-plane compatibility of C^21 with C^1", "out-of-plane compatibility of C^23 with C^3")
-
-    def __init__(self, dev, pose, R1, m, contacts, up=Z):
-        super().__init__(pose.Q, pose.axis)
-        self.dev, self.R1, self.m, self.contacts = dev, R1, m, contacts
-        # RB3 at R^3(t_{n-1}) + (x_5 - R^3_z(t_{n-1})) up: vertical on its guide, or (``up`` in pi) the
-        # paper's step solved wholly in the plane pi
-        self.up, self.R3_base = up, pose.R3 - pose.R3[2] * up
-
-    def R3(self, x):
-        return self.R3_base + x[5] * self.up
-
-    def pose(self, x):
-        return Pose(self.R1, x[:3].copy(), self.orientation(x)[0], self.R3(x))
-
-    def rows(self, x):
-        dev, m = self.dev, self.m
-        G = x[:3]
-        Q, c = self.orientation(x)
-        a = Q[:, 2]
-        w = cross(a, m)
-        nw = np.linalg.norm(w)
-        u = w / nw
-        da = [cross(cj, a) for cj in c]
-        du = []
-        for daj in da:
-            dw = cross(daj, m)
-            du.append((dw - u * (u @ dw)) / nw)
-        R3 = self.R3(x)
-        g = np.empty(6)
-        J = np.zeros((6, 6))
-        plates = (self.R1, self.R1, R3, R3)
-        along = (-dev.B, -dev.B, dev.B, dev.B)
-        across = (-dev.A1, dev.A1, -dev.A3, dev.A3)
-        for i in range(4):
-            point, normal = self.contacts[i]
-            P = G + along[i] * a + across[i] * u
-            g[i] = (P - plates[i] - point) @ normal
-            J[i, :3] = normal
-            for j in range(2):
-                J[i, 3 + j] = (along[i] * da[j] + across[i] * du[j]) @ normal
-            if i >= 2:
-                J[i, 5] = -(normal @ self.up)
-        C1, C3 = self.R1 + dev.c1 * Z, R3 + dev.c3 * Z
-        for i, (y, C) in enumerate(((dev.y21, C1), (dev.y23, C3))):
-            g[4 + i] = (G + y * a - C) @ m
-            J[4 + i, :3] = m
-            for j in range(2):
-                J[4 + i, 3 + j] = y * (da[j] @ m)
-        J[5, 5] = -(m @ self.up)
-        return g, J
+    dev: Device
+    Q_ref: tuple
+    k1: tuple
+    k2: tuple
+    R1: tuple
+    guide: tuple
+    v1: tuple
+    v3: tuple
+    target1: tuple
+    target3: tuple
 
 
-class Sticking(Phase):
-    """The diagonal's two rim points pinned to their plates (Eq. 31 in space), RB3 on its guide."""
+class SlippingPhase(NamedTuple):
+    """Eqs. 37-41 in space: v1, v3 on the tangent planes at their projections (global ``points``,
+    ``normals``), G^2 on the line C^1C^3 (normal ``n12``) with the axis in the slip plane (normal
+    ``ms``); RB1 and RB3 fixed (R1, R3)."""
 
-    name = "sticking"
-
-    def __init__(self, dev, pose, R1, R3_guide, v1, v3, labels):
-        # the smallest rotation: about axes normal to the pinned diagonal
-        super().__init__(pose.Q, pose.Q @ (v3 - v1))
-        self.dev, self.R1, self.v1, self.v3 = dev, R1, v1, v3
-        self.target1 = pose.G + pose.Q @ v1 + (R1 - pose.R1)  # moves with RB1
-        self.target3 = pose.G + pose.Q @ v3 - pose.R3  # relative to RB3
-        self.R3h = R3_guide
-        self.labels = labels
-
-    def R3(self, x):
-        return np.array([self.R3h[0], self.R3h[1], x[5]])
-
-    def pose(self, x):
-        return Pose(self.R1, x[:3].copy(), self.orientation(x)[0], self.R3(x))
-
-    def rows(self, x):
-        G = x[:3]
-        Q, c = self.orientation(x)
-        g = np.empty(6)
-        J = np.zeros((6, 6))
-        r1, r3 = Q @ self.v1, Q @ self.v3
-        g[:3] = G + r1 - self.target1
-        g[3:] = G + r3 - self.R3(x) - self.target3
-        J[:3, :3] = J[3:, :3] = np.eye(3)
-        _point_rows(J, 0, c, r1)
-        _point_rows(J, 3, c, r3)
-        J[3:, 5] = -Z
-        return g, J
+    dev: Device
+    Q_ref: tuple
+    k1: tuple
+    k2: tuple
+    R1: tuple
+    R3: tuple
+    C1: tuple
+    C3: tuple
+    ms: tuple
+    n12: tuple
+    v1: tuple
+    v3: tuple
+    points: tuple
+    normals: tuple
 
 
-class Slipping(Phase):
-    """Eqs. 37-41 in space: the pad slides back onto the line C^1C^3, RB3 at distance L (no spin)."""
-
-    name = "slipping"
-
-    def __init__(self, dev, stick_pose, e1, v1, v3, labels):
-        super().__init__(stick_pose.Q, stick_pose.axis)
-        self.dev, self.v1, self.v3 = dev, v1, v3
-        C1 = stick_pose.C1(dev)
-        e = unit(stick_pose.C3(dev) - C1)
-        self.R1 = stick_pose.R1
-        self.R3 = C1 + dev.L * e - dev.c3 * Z  # Eq. 41 and RB3 along C^1C^3 (Eq. 39)
-        self.C1, self.C3 = C1, self.R3 + dev.c3 * Z
-        self.ms = unit(cross(e1, -e))
-        self.n12 = cross(self.ms, e)
-        P1 = stick_pose.G + stick_pose.Q @ v1
-        P3 = stick_pose.G + stick_pose.Q @ v3
-        p1, n1 = project(P1, C1, dev.R1)
-        p3, n3 = project(P3, stick_pose.C3(dev), dev.R3)
-        # contact points move with their plates: RB1 is frozen, RB3 translates to its new place
-        self.contacts = ((p1, n1), (p3 - stick_pose.R3 + self.R3, n3))
-        self.labels = labels + ("G^2 on the line C^1C^3 (Eq. 38)", "axis in the slip plane: C^21 with C^1",
-                                "axis in the slip plane: C^23 with C^3")
-
-    def pose(self, x):
-        return Pose(self.R1, x[:3].copy(), self.orientation(x)[0], self.R3)
-
-    def rows(self, x):
-        dev, ms = self.dev, self.ms
-        G = x[:3]
-        Q, c = self.orientation(x)
-        a = Q[:, 2]
-        g = np.empty(5)
-        J = np.zeros((5, 5))
-        for i, v in enumerate((self.v1, self.v3)):
-            point, normal = self.contacts[i]
-            r = Q @ v
-            g[i] = (G + r - point) @ normal
-            J[i, :3] = normal
-            _point_rows(J, i, c, r, normal)
-        g[2] = (G - self.C1) @ self.n12
-        J[2, :3] = self.n12
-        da = [cross(cj, a) for cj in c]
-        for i, (y, C) in enumerate(((dev.y21, self.C1), (dev.y23, self.C3))):
-            g[3 + i] = (G + y * a - C) @ ms
-            J[3 + i, :3] = ms
-            for j in range(2):
-                J[3 + i, 3 + j] = y * (da[j] @ ms)
-        return g, J
+@jit
+def compliant_phase(dev, pose, R1, m, up):
+    """The compliant step from ``pose`` to RB1 at R1 in the plane of normal m; ``up``: the direction
+    RB3 moves in (Z: its guide)."""
+    centres = (C1(pose, dev), C1(pose, dev), C3(pose, dev), C3(pose, dev))
+    rim = section(pose.Q, pose.G, dev, m)
+    p0, n0 = project(rim[0], centres[0], dev.R1)
+    p1, n1 = project(rim[1], centres[1], dev.R1)
+    p2, n2 = project(rim[2], centres[2], dev.R3)
+    p3, n3 = project(rim[3], centres[3], dev.R3)
+    # plate frames: the plates do not rotate
+    points = (sub(p0, pose.R1), sub(p1, pose.R1), sub(p2, pose.R3), sub(p3, pose.R3))
+    k1, k2 = normal_basis(pose.Q[2])
+    return CompliantPhase(dev, pose.Q, k1, k2, R1, m, points, (n0, n1, n2, n3), up,
+                          axpy(pose.R3, -pose.R3[2], up))
 
 
-# --- Newton-Raphson ----------------------------------------------------------------------------
-@dataclass
-class Solution:
-    pose: Pose
-    iterations: int
-    residual: float
+@jit
+def compliant_R3(phase, x):
+    return axpy(phase.R3_base, x[5], phase.up)
 
 
-def solve(phase: Phase, x0, options: NewtonOptions = NewtonOptions(), context: dict | None = None) -> Solution:
-    """Newton-Raphson on the phase's rows from x0; errors as ``newton.solve``'s."""
-    x = np.array(x0, dtype=float)
-    for it in range(options.max_iter + 1):
-        g, J = phase.rows(x)
-        norm = float(np.max(np.abs(g)))
-        if norm <= options.tol:  # NaN fails
-            return Solution(phase.pose(x), it, norm)
-        if it == options.max_iter:
+@jit
+def compliant_rows(phase, x):
+    """Rows g (6) and dg/dx (6 x 6) of compliant sliding at x = (G^2, w_1, w_2, R^3_z)."""
+    dev, m = phase.dev, phase.m
+    G = (x[0], x[1], x[2])
+    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    a = Q[2]
+    w = cross(a, m)
+    nw = norm(w)
+    u = scale(1.0 / nw, w)
+    da1, da2 = cross(c1, a), cross(c2, a)
+    dw1, dw2 = cross(da1, m), cross(da2, m)
+    du1 = scale(1.0 / nw, axpy(dw1, -dot(u, dw1), u))
+    du2 = scale(1.0 / nw, axpy(dw2, -dot(u, dw2), u))
+    R3 = compliant_R3(phase, x)
+    up = phase.up
+
+    def tangent(along, across, plate, point, normal, rises):
+        P = axpy(axpy(G, along, a), across, u)
+        g = dot(sub(sub(P, plate), point), normal)
+        d3 = -dot(normal, up) if rises else 0.0
+        return g, (normal[0], normal[1], normal[2], dot(axpy(scale(along, da1), across, du1), normal),
+                   dot(axpy(scale(along, da2), across, du2), normal), d3)
+
+    pts, nrm = phase.points, phase.normals
+    g0, J0 = tangent(-dev.B, -dev.A1, phase.R1, pts[0], nrm[0], False)
+    g1, J1 = tangent(-dev.B, dev.A1, phase.R1, pts[1], nrm[1], False)
+    g2, J2 = tangent(dev.B, -dev.A3, R3, pts[2], nrm[2], True)
+    g3, J3 = tangent(dev.B, dev.A3, R3, pts[3], nrm[3], True)
+    g4 = dot(sub(axpy(G, dev.y21, a), axpy(phase.R1, dev.c1, Z)), m)
+    g5 = dot(sub(axpy(G, dev.y23, a), axpy(R3, dev.c3, Z)), m)
+    J4 = (m[0], m[1], m[2], dev.y21 * dot(da1, m), dev.y21 * dot(da2, m), 0.0)
+    J5 = (m[0], m[1], m[2], dev.y23 * dot(da1, m), dev.y23 * dot(da2, m), -dot(m, up))
+    return (g0, g1, g2, g3, g4, g5), (J0, J1, J2, J3, J4, J5)
+
+
+@jit
+def compliant_pose(phase, x):
+    Q, _, _ = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    return Pose(phase.R1, (x[0], x[1], x[2]), Q, compliant_R3(phase, x))
+
+
+@jit
+def sticking_phase(dev, pose, R1, guide, v1, v3):
+    """The sticking phase from ``pose`` with RB1 moved to R1; RB3 back on its guide (x, y)."""
+    # the smallest rotation: about axes normal to the pinned diagonal
+    k1, k2 = normal_basis(apply(pose.Q, sub(v3, v1)))
+    target1 = add(add(pose.G, apply(pose.Q, v1)), sub(R1, pose.R1))
+    target3 = sub(add(pose.G, apply(pose.Q, v3)), pose.R3)
+    return StickingPhase(dev, pose.Q, k1, k2, R1, guide, v1, v3, target1, target3)
+
+
+@jit
+def sticking_rows(phase, x):
+    """Rows g (6) and dg/dx (6 x 6) of sticking at x = (G^2, w_1, w_2, R^3_z)."""
+    G = (x[0], x[1], x[2])
+    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    r1, r3 = apply(Q, phase.v1), apply(Q, phase.v3)
+    R3 = (phase.guide[0], phase.guide[1], x[5])
+    h1 = sub(add(G, r1), phase.target1)
+    h3 = sub(sub(add(G, r3), R3), phase.target3)
+    a1, b1 = cross(c1, r1), cross(c2, r1)
+    a3, b3 = cross(c1, r3), cross(c2, r3)
+    return (h1[0], h1[1], h1[2], h3[0], h3[1], h3[2]), (
+        (1.0, 0.0, 0.0, a1[0], b1[0], 0.0), (0.0, 1.0, 0.0, a1[1], b1[1], 0.0), (0.0, 0.0, 1.0, a1[2], b1[2], 0.0),
+        (1.0, 0.0, 0.0, a3[0], b3[0], 0.0), (0.0, 1.0, 0.0, a3[1], b3[1], 0.0), (0.0, 0.0, 1.0, a3[2], b3[2], -1.0))
+
+
+@jit
+def sticking_pose(phase, x):
+    Q, _, _ = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    return Pose(phase.R1, (x[0], x[1], x[2]), Q, (phase.guide[0], phase.guide[1], x[5]))
+
+
+@jit
+def slipping_phase(dev, stick, e1, v1, v3):
+    """The slipping phase from the end of sticking ``stick`` in a step along e1."""
+    k1, k2 = normal_basis(stick.Q[2])
+    c1 = C1(stick, dev)
+    e = unit(sub(C3(stick, dev), c1))
+    R3 = axpy(axpy(c1, dev.L, e), -dev.c3, Z)  # Eq. 41 and RB3 along C^1C^3 (Eq. 39)
+    ms = unit(cross(e1, scale(-1.0, e)))
+    p1, n1 = project(add(stick.G, apply(stick.Q, v1)), c1, dev.R1)
+    p3, n3 = project(add(stick.G, apply(stick.Q, v3)), C3(stick, dev), dev.R3)
+    # contact points move with their plates: RB1 is frozen, RB3 translates to its new place
+    points = (p1, add(sub(p3, stick.R3), R3))
+    return SlippingPhase(dev, stick.Q, k1, k2, stick.R1, R3, c1, axpy(R3, dev.c3, Z), ms, cross(ms, e), v1, v3,
+                         points, (n1, n3))
+
+
+@jit
+def slipping_rows(phase, x):
+    """Rows g (6) and dg/dx (6 x 6) of slipping at x = (G^2, w_1, w_2, x_6): five rows, and x_6 = 0."""
+    dev, ms = phase.dev, phase.ms
+    G = (x[0], x[1], x[2])
+    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    a = Q[2]
+
+    def tangent(v, point, normal):
+        r = apply(Q, v)
+        return dot(sub(add(G, r), point), normal), (normal[0], normal[1], normal[2], dot(cross(c1, r), normal),
+                                                    dot(cross(c2, r), normal), 0.0)
+
+    g0, J0 = tangent(phase.v1, phase.points[0], phase.normals[0])
+    g1, J1 = tangent(phase.v3, phase.points[1], phase.normals[1])
+    n12 = phase.n12
+    g2 = dot(sub(G, phase.C1), n12)
+    da1, da2 = cross(c1, a), cross(c2, a)
+    g3 = dot(sub(axpy(G, dev.y21, a), phase.C1), ms)
+    g4 = dot(sub(axpy(G, dev.y23, a), phase.C3), ms)
+    return (g0, g1, g2, g3, g4, x[5]), (
+        J0, J1, (n12[0], n12[1], n12[2], 0.0, 0.0, 0.0),
+        (ms[0], ms[1], ms[2], dev.y21 * dot(da1, ms), dev.y21 * dot(da2, ms), 0.0),
+        (ms[0], ms[1], ms[2], dev.y23 * dot(da1, ms), dev.y23 * dot(da2, ms), 0.0),
+        (0.0, 0.0, 0.0, 0.0, 0.0, 1.0))
+
+
+@jit
+def slipping_pose(phase, x):
+    Q, _, _ = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    return Pose(phase.R1, (x[0], x[1], x[2]), Q, phase.R3)
+
+
+# --- Newton-Raphson ------------------------------------------------------------------------------
+@jit
+def max_abs(g):
+    """max |g_i|, NaN if any is NaN."""
+    m = 0.0
+    for v in g:
+        a = abs(v)
+        if a != a:
+            return math.nan
+        if a > m:
+            m = a
+    return m
+
+
+@jit
+def solve6(J, g, work):
+    """Solve J x = g (6 x 6, rows as tuples) by Gaussian elimination with partial pivoting in the
+    (6, 7) array ``work``; ok is False when a pivot is exactly zero (a singular Jacobian)."""
+    n = 6
+    for i in range(n):
+        row = J[i]
+        for j in range(n):
+            work[i, j] = row[j]
+        work[i, n] = g[i]
+    for c in range(n):
+        p, best = c, abs(work[c, c])
+        for r in range(c + 1, n):
+            if abs(work[r, c]) > best:
+                p, best = r, abs(work[r, c])
+        if best == 0.0:
+            return False, g
+        if p != c:
+            for j in range(c, n + 1):
+                work[c, j], work[p, j] = work[p, j], work[c, j]
+        inverse = 1.0 / work[c, c]
+        for r in range(c + 1, n):
+            f = work[r, c] * inverse
+            if f != 0.0:
+                for j in range(c + 1, n + 1):
+                    work[r, j] -= f * work[c, j]
+    for i in range(n - 1, -1, -1):
+        s = work[i, n]
+        for j in range(i + 1, n):
+            s -= work[i, j] * work[j, n]
+        work[i, n] = s / work[i, i]
+    return True, (work[0, n], work[1, n], work[2, n], work[3, n], work[4, n], work[5, n])
+
+
+@generic
+def newton(rows, phase, x, tol, max_iter, work):
+    """Newton-Raphson on ``rows(phase, x)`` from x: (x, iterations, max |g|, status, g)."""
+    for it in range(max_iter + 1):
+        g, J = rows(phase, x)
+        residual = max_abs(g)
+        if residual <= tol:  # NaN fails
+            return x, it, residual, CONVERGED, g
+        if it == max_iter:
             break
-        try:
-            x -= np.linalg.solve(J, g)
-        except np.linalg.LinAlgError:
-            raise SingularJacobianError(
-                f"singular constraint Jacobian in {phase.name} ({_where(context)}): the rows do not fix the pad "
-                "here.", "Check the geometry and the step size.") from None
-    a = np.where(np.isnan(g), np.inf, np.abs(g))
-    row = int(np.argmax(a))
-    hint = (f"The residual stalls within {STALLED:g} times the tolerance: round-off, not divergence; raise newton.tol."
-            if a[row] <= STALLED * options.tol else
-            "Likely cause: a step too large for the geometry (the constraints cannot follow the ground increment): "
-            "reduce dt or the amplitude.")
-    raise ConvergenceError(
-        f"Newton-Raphson did not converge in {phase.name} ({_where(context)}): after {options.max_iter} iterations "
-        f"the residual is {a[row]:.3e} m > tol {options.tol:.1e} m; largest: {phase.labels[row]} = {g[row]:.3e}.",
-        hint)
+        ok, dx = solve6(J, g, work)
+        if not ok:
+            return x, it, residual, SINGULAR, g
+        x = (x[0] - dx[0], x[1] - dx[1], x[2] - dx[2], x[3] - dx[3], x[4] - dx[4], x[5] - dx[5])
+    return x, max_iter, residual, NOT_CONVERGED, g
 
 
-def _where(context) -> str:
-    ctx = context or {}
-    parts = [f"step {ctx['step']}"] if "step" in ctx else []
-    if "time" in ctx:
-        parts.append(f"time {ctx['time']:.6g} s")
-    return ", ".join(parts)
+# --- the steps of the two models -----------------------------------------------------------------
+NAN3 = (math.nan,) * 3
+NAN_POSE = Pose(NAN3, NAN3, (NAN3, NAN3, NAN3), NAN3)
 
 
-def _context(n, times):
-    return {"step": n} if times is None else {"step": n, "time": float(times[n])}
+@jit
+def _guess(pose, R1):
+    G = axpy(pose.G, 0.5, sub(R1, pose.R1))
+    return (G[0], G[1], G[2], 0.0, 0.0, pose.R3[2])
 
 
-# --- steppers ----------------------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class SpatialStep:
-    """The configuration at t_n and how the solver got there (n = 0: the start, no solve); the
-    step's direction e1 and plane normal m; for stick-slip also the end of its sticking phase
-    (None for compliant sliding, and at n = 0) and whether the trailing rim point is pinned."""
+@jit
+def compliant_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
+    """One compliant sliding step: (pose, end of sticking (none: NaN), its and residual of both
+    phases, status, failing phase, its rows)."""
+    up = unit(cross(m, e1)) if in_plane else Z
+    phase = compliant_phase(dev, pose, R1, m, up)
+    x, its, res, status, g = newton(compliant_rows, phase, _guess(pose, R1), tol, max_iter, work)
+    return compliant_pose(phase, x), NAN_POSE, 0, 0.0, its, res, status, COMPLIANT, g
 
-    n: int
-    pose: Pose
-    e1: np.ndarray
-    m: np.ndarray
-    newton_iterations: int
-    residual: float
-    stick: Pose | None = None
-    newton_iterations_stick: int = 0
-    residual_stick: float = 0.0
+
+@jit
+def stick_slip_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
+    """One stick-slip step (as ``compliant_step``): sticking, then slipping from its end."""
+    v1, v3 = pinned(pose, dev, m)
+    stick = sticking_phase(dev, pose, R1, guide, v1, v3)
+    x, its1, res1, status, g = newton(sticking_rows, stick, _guess(pose, R1), tol, max_iter, work)
+    if status != CONVERGED:
+        return NAN_POSE, NAN_POSE, its1, res1, 0, 0.0, status, STICKING, g
+    end = sticking_pose(stick, x)
+    slip = slipping_phase(dev, end, e1, v1, v3)
+    x, its, res, status, g = newton(slipping_rows, slip, (end.G[0], end.G[1], end.G[2], 0.0, 0.0, 0.0), tol,
+                                    max_iter, work)
+    return slipping_pose(slip, x), end, its1, res1, its, res, status, SLIPPING, g
+
+
+# --- what a history shows ------------------------------------------------------------------------
+@jit
+def _reach(centre, a, radius, plate):
+    """Largest horizontal distance from the plate's axis of a rim (centre, radius, normal a): at the
+    rim's two points in the vertical plane through the axis a (the radial section, where the rim
+    reaches furthest whenever the pad is near compatible), or along the rim centre's offset
+    where the axis is vertical."""
+    offset = sub(centre, plate)
+    if math.hypot(a[0], a[1]) > 0:
+        direction = (a[0], a[1], 0.0)
+    elif math.hypot(offset[0], offset[1]) > 0:
+        direction = (offset[0], offset[1], 0.0)
+    else:
+        direction = (1.0, 0.0, 0.0)
+    # the in-rim direction of steepest horizontal extent: direction projected normal to a
+    u = unit(axpy(direction, -dot(direction, a), a))
+    p, q = axpy(offset, -radius, u), axpy(offset, radius, u)
+    return max(math.hypot(p[0], p[1]), math.hypot(q[0], q[1]))
+
+
+@jit
+def clearances(pose, dev):
+    """Clearance (m) between the pad and the retaining rings of RB1 and RB3 (negative beyond a
+    ring): R^j sin(alpha^j) minus the largest horizontal distance of the pad's rim on that plate
+    from the plate's axis."""
+    a = pose.Q[2]
+    return (dev.ring1 - _reach(axpy(pose.G, -dev.B, a), a, dev.A1, pose.R1),
+            dev.ring3 - _reach(axpy(pose.G, dev.B, a), a, dev.A3, pose.R3))
+
+
+@jit
+def _store(out, n, pose, dev, m):
+    """Row n of ``out`` (T, 24): R^1, G^2, the columns of Q, R^3, the interpenetration of the
+    section's four rim points (positive into the plate) and the two clearances."""
+    for i in range(3):
+        out[n, i], out[n, 3 + i], out[n, 15 + i] = pose.R1[i], pose.G[i], pose.R3[i]
+        for j in range(3):
+            out[n, 6 + 3 * j + i] = pose.Q[j][i]
+    rim = section(pose.Q, pose.G, dev, m)
+    c1, c3 = C1(pose, dev), C3(pose, dev)
+    out[n, 18] = norm(sub(rim[0], c1)) - dev.R1
+    out[n, 19] = norm(sub(rim[1], c1)) - dev.R1
+    out[n, 20] = norm(sub(rim[2], c3)) - dev.R3
+    out[n, 21] = norm(sub(rim[3], c3)) - dev.R3
+    out[n, 22], out[n, 23] = clearances(pose, dev)
+
+
+@generic
+def _history(step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes, solver,
+             failure):
+    """All the steps of one case: rows of ``ends``, ``sticks`` (T, 24; ``_store``), ``planes`` (T, 6:
+    e1, m) and ``solver`` (T, 4: iterations and residual of sticking, then of the step's last
+    phase). Returns the number of steps stored; a failed step fills ``failure`` (status, phase,
+    then its six rows; status CONVERGED: none failed) and ends the history before it."""
+    work = np.empty((6, 7))
+    guide = (pose.R3[0], pose.R3[1])
+    e1, m = step_plane(pose, dev, Xg[1, 0] - Xg[0, 0], Xg[1, 1] - Xg[0, 1], reference)
+    for n in range(Xg.shape[0]):
+        if n > 0:
+            e1, m = step_plane(pose, dev, Xg[n, 0] - Xg[n - 1, 0], Xg[n, 1] - Xg[n - 1, 1], reference)
+            R1 = (Xg[n, 0], Xg[n, 1], 0.0)
+            end, stick, its1, res1, its, res, status, phase, g = step(dev, pose, R1, e1, m, guide, in_plane, tol,
+                                                                      max_iter, work)
+            if status != CONVERGED:
+                failure[0], failure[1] = status, phase
+                for i in range(6):
+                    failure[2 + i] = g[i]
+                return n
+            pose = end
+            solver[n, 0], solver[n, 1], solver[n, 2], solver[n, 3] = its1, res1, its, res
+        else:
+            stick = NAN_POSE
+            solver[n, 0], solver[n, 1], solver[n, 2], solver[n, 3] = 0, 0.0, 0, 0.0
+        _store(ends, n, pose, dev, m)
+        _store(sticks, n, stick, dev, m)
+        for i in range(3):
+            planes[n, i], planes[n, 3 + i] = e1[i], m[i]
+        if stop_at_ring and (ends[n, 22] < 0 or ends[n, 23] < 0):
+            return n + 1
+    return Xg.shape[0]
+
+
+@njit(cache=True, error_model="numpy")
+def compliant_history(dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes, solver,
+                      failure):
+    """``_history`` of compliant sliding (arguments but the stepper as ``_history``'s)."""
+    return _history(compliant_step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
+                    planes, solver, failure)
+
+
+@njit(cache=True, error_model="numpy")
+def stick_slip_history(dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
+                       solver, failure):
+    """``_history`` of stick-slip (arguments but the stepper as ``_history``'s)."""
+    return _history(stick_slip_step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
+                    planes, solver, failure)
+
+
+STEPPERS = {"compliant": compliant_history, "stick_slip": stick_slip_history}
+#: the per-step quantities of a history, by column of the ``_store`` rows: name -> (columns, shape)
+COLUMNS = {"R1": (slice(0, 3), (3,)), "G": (slice(3, 6), (3,)), "Q": (slice(6, 15), (3, 3)),
+           "R3": (slice(15, 18), (3,)), "interpenetration": (slice(18, 22), (4,)),
+           "clearance_1": (22, ()), "clearance_3": (23, ())}
 
 
 def _ground(Xg):
@@ -440,122 +699,77 @@ def _ground(Xg):
         raise ValueError(f"Xg must have shape (T, 2) with T >= 2 (x, y of each step), got {Xg.shape}")
     if not np.isfinite(Xg).all():
         raise ValueError("Xg must be finite")
-    return Xg
+    return np.ascontiguousarray(Xg)
 
 
-def _reference(azimuth):
-    return np.array([math.cos(azimuth), math.sin(azimuth), 0.0])
-
-
-def compliant_steps(geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None,
-                    in_plane=False):
-    """Yield a ``SpatialStep`` per step of compliant sliding under X_g (T, 2) (m); ``azimuth``
-    (rad): the plane of theta2_0 and the direction of a zero increment. ``in_plane=True`` solves
-    each step wholly in its plane pi, as the paper's Sec. 4 reads: RB3 rises along the direction
-    in pi normal to the increment, which leans from the vertical once the device is displaced
-    across the increment, and RB3 leaves its guide (kept to measure that; not a model to use)."""
-    Xg = _ground(Xg)
-    dev = Device.of(geometry)
-    pose = start(geometry, Xg[0], theta2_0, azimuth)
-    reference = _reference(azimuth)
-    e1, m = step_plane(pose, dev, Xg[1] - Xg[0], reference)
-    yield SpatialStep(0, pose, e1, m, 0, 0.0)
-    for n in range(1, len(Xg)):
-        e1, m = step_plane(pose, dev, Xg[n] - Xg[n - 1], reference)
-        centres = (pose.C1(dev), pose.C1(dev), pose.C3(dev), pose.C3(dev))
-        radii = (dev.R1, dev.R1, dev.R3, dev.R3)
-        plates = (pose.R1, pose.R1, pose.R3, pose.R3)
-        contacts = []
-        for P, C, r, R in zip(section(pose.Q, pose.G, dev, m), centres, radii, plates):
-            p, normal = project(P, C, r)
-            contacts.append((p - R, normal))  # plate frames: the plates do not rotate
-        R1 = np.array([Xg[n, 0], Xg[n, 1], 0.0])
-        up = unit(cross(m, e1)) if in_plane else Z
-        phase = Compliant(dev, pose, R1, m, contacts, up)
-        guess = np.concatenate([pose.G + 0.5 * (R1 - pose.R1), [0.0, 0.0, pose.R3[2]]])
-        sol = solve(phase, guess, options, _context(n, times))
-        pose = sol.pose
-        yield SpatialStep(n, pose, e1, m, sol.iterations, sol.residual)
-
-
-def pinned(pose, dev, m):
-    """Pad-frame positions of the trailing lower and leading upper rim points of the section by
-    the plane normal m: the jammed diagonal of a stick-slip step (A-D or B-C in the plane)."""
-    P1, _, _, P3 = section(pose.Q, pose.G, dev, m)
-    return pose.Q.T @ (P1 - pose.G), pose.Q.T @ (P3 - pose.G)
-
-
-STICK_LABELS = ("x of the trailing lower rim point pinned to RB1", "y of the trailing lower rim point pinned to RB1",
-                "z of the trailing lower rim point pinned to RB1", "x of the leading upper rim point pinned to RB3",
-                "y of the leading upper rim point pinned to RB3", "z of the leading upper rim point pinned to RB3")
-SLIP_LABELS = ("trailing lower rim point on its tangent plane", "leading upper rim point on its tangent plane")
-
-
-def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None):
-    """Yield a ``SpatialStep`` per stick-slip step under X_g (T, 2) (m), with the end of its
-    sticking phase; ``azimuth`` as for ``compliant_steps``."""
-    Xg = _ground(Xg)
-    dev = Device.of(geometry)
-    pose = start(geometry, Xg[0], theta2_0, azimuth)
-    guide = pose.R3[:2].copy()
-    reference = _reference(azimuth)
-    e1, m = step_plane(pose, dev, Xg[1] - Xg[0], reference)
-    yield SpatialStep(0, pose, e1, m, 0, 0.0)
-    for n in range(1, len(Xg)):
-        e1, m = step_plane(pose, dev, Xg[n] - Xg[n - 1], reference)
-        v1, v3 = pinned(pose, dev, m)
-        R1 = np.array([Xg[n, 0], Xg[n, 1], 0.0])
-        stick = Sticking(dev, pose, R1, guide, v1, v3, STICK_LABELS)
-        guess = np.concatenate([pose.G + 0.5 * (R1 - pose.R1), [0.0, 0.0, pose.R3[2]]])
-        s1 = solve(stick, guess, options, _context(n, times))
-        slip = Slipping(dev, s1.pose, e1, v1, v3, SLIP_LABELS)
-        s2 = solve(slip, np.concatenate([s1.pose.G, [0.0, 0.0]]), options, _context(n, times))
-        pose = s2.pose
-        yield SpatialStep(n, pose, e1, m, s2.iterations, s2.residual, s1.pose, s1.iterations, s1.residual)
-
-
-@dataclass(frozen=True)
-class SpatialModel:
-    name: str
-    title: str
-    steps: Callable
-
-
-REGISTRY = {m.name: m for m in (SpatialModel("compliant", "Compliant Sliding", compliant_steps),
-                                SpatialModel("stick_slip", "Stick-Slip", stick_slip_steps))}
-
-
-def steps(name, geometry, Xg, theta2_0=0.0, **kw):
-    if name not in REGISTRY:
-        raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {name!r}")
-    return REGISTRY[name].steps(geometry, Xg, theta2_0, **kw)
-
-
-# --- histories and what they show --------------------------------------------------------------
-def _poses(poses, prefix=""):
-    return {prefix + "R1": np.array([p.R1 for p in poses]), prefix + "G": np.array([p.G for p in poses]),
-            prefix + "Q": np.array([p.Q for p in poses]), prefix + "R3": np.array([p.R3 for p in poses])}
-
-
-def collect(records) -> dict:
-    """A history as arrays, time first: R1, G, R3 (T, 3), Q (T, 3, 3), e1, m (T, 3), the solver
-    figures and, for stick-slip, the same of the end of sticking (``stick_`` prefix; NaN at n = 0)."""
-    rows = list(records)
-    out = _poses([r.pose for r in rows])
-    out["e1"] = np.array([r.e1 for r in rows])
-    out["m"] = np.array([r.m for r in rows])
-    out["newton_iterations"] = np.array([r.newton_iterations for r in rows])
-    out["residual"] = np.array([r.residual for r in rows])
-    if len(rows) > 1 and rows[-1].stick is not None:
-        nan = Pose(*(np.full_like(getattr(rows[0].pose, f.name), np.nan) for f in fields(Pose)))
-        out.update(_poses([r.stick if r.stick is not None else nan for r in rows], "stick_"))
-        out["newton_iterations_stick"] = np.array([r.newton_iterations_stick for r in rows])
-        out["residual_stick"] = np.array([r.residual_stick for r in rows])
+def _unpack(rows, prefix=""):
+    out = {}
+    for name, (cols, shape) in COLUMNS.items():
+        values = rows[:, cols].reshape((len(rows),) + shape)
+        out[prefix + name] = values.transpose(0, 2, 1) if name == "Q" else values  # stored by columns
     return out
 
 
-def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    return collect(steps(name, geometry, Xg, theta2_0, **kw))
+def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None, in_plane=False,
+        stop_at_ring=False) -> dict:
+    """The history of model ``name`` under X_g (T, 2) (m), as arrays, time first.
+
+    ``azimuth`` (rad): the plane of theta2_0 and the direction of a zero increment. Keys: R1, G, R3
+    (T, 3), Q (T, 3, 3), e1, m (T, 3), the solver figures, the interpenetration of the step's four
+    rim points (T, 4; order RIM_POINTS) and the clearances to the rings (``clearance_1``,
+    ``clearance_3``); for stick-slip the same of the end of sticking (``stick_`` prefix; NaN at
+    n = 0). ``stop_at_ring``: end the history at the first step where the pad has passed a ring.
+    ``in_plane=True`` solves each compliant step wholly in its plane pi, as the paper's Sec. 4
+    reads: RB3 rises along the direction in pi normal to the increment, which leans from the
+    vertical once the device is displaced across the increment, and RB3 leaves its guide (kept to
+    measure that; not a model to use).
+
+    A ConvergenceError (SingularJacobianError) names the step, time, phase and largest row and
+    carries the history up to the last converged step as ``err.history``.
+    """
+    if name not in STEPPERS:
+        raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {name!r}")
+    Xg = _ground(Xg)
+    dev = device(geometry)
+    T = len(Xg)
+    ends, sticks, planes = np.empty((T, 24)), np.empty((T, 24)), np.empty((T, 6))
+    solver, failure = np.empty((T, 4)), np.zeros(8)
+    reference = (math.cos(azimuth), math.sin(azimuth), 0.0)
+    done = STEPPERS[name](dev, Xg, start(geometry, Xg[0], theta2_0, azimuth), reference, bool(in_plane),
+                    float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks, planes, solver,
+                    failure)
+    history = _unpack(ends[:done])
+    history["e1"], history["m"] = planes[:done, :3], planes[:done, 3:]
+    history["newton_iterations"] = solver[:done, 2].astype(np.int64)
+    history["residual"] = solver[:done, 3]
+    if name == "stick_slip":
+        history.update(_unpack(sticks[:done], "stick_"))
+        history["newton_iterations_stick"] = solver[:done, 0].astype(np.int64)
+        history["residual_stick"] = solver[:done, 1]
+    if failure[0] != CONVERGED:  # else a history shorter than Xg stopped at a ring
+        err = _failure(failure, done, times, options)
+        err.history = history if done else None
+        raise err
+    return history
+
+
+def _failure(failure, n, times, options) -> ConvergenceError:
+    """The error of a failed step n (``failure``: status, phase, then its six rows)."""
+    status, phase, g = int(failure[0]), int(failure[1]), failure[2:]
+    where = f"step {n}" + ("" if times is None else f", time {float(times[n]):.6g} s")
+    if status == SINGULAR:
+        return SingularJacobianError(f"singular constraint Jacobian in {PHASE_NAMES[phase]} ({where}): the rows do "
+                                     "not fix the pad here.", "Check the geometry and the step size.")
+    a = np.where(np.isnan(g), np.inf, np.abs(g))
+    row = int(np.argmax(a))
+    hint = (f"The residual stalls within {STALLED:g} times the tolerance: round-off, not divergence; raise newton.tol."
+            if a[row] <= STALLED * options.tol else
+            "Likely cause: a step too large for the geometry (the constraints cannot follow the ground increment): "
+            "reduce dt or the amplitude.")
+    return ConvergenceError(
+        f"Newton-Raphson did not converge in {PHASE_NAMES[phase]} ({where}): after {options.max_iter} iterations "
+        f"the residual is {a[row]:.3e} m > tol {options.tol:.1e} m; largest: {LABELS[phase][row]} = {g[row]:.3e}.",
+        hint)
 
 
 def tilt(Q):
@@ -573,66 +787,29 @@ def diagnostics(history, geometry, prefix="") -> dict:
     rest position (m), the cap-centre gaps |C^21 - C^1|, |C^23 - C^3| (m), the interpenetration of
     the step's four rim points (m, positive into the plate; order RIM_POINTS) and the clearance to
     each retaining ring (m; negative beyond it)."""
-    dev = Device.of(geometry)
+    dev = device(geometry)
     G, Q, R1, R3 = (history[prefix + k] for k in ("G", "Q", "R1", "R3"))
     a = Q[..., :, 2]
-    C1, C3 = R1 + dev.c1 * Z, R3 + dev.c3 * Z
+    up = np.array(Z)
     out = {}
     out["tilt"], out["tilt_azimuth"] = tilt(Q)
     out["rise"] = R3[:, 2] - dev.rest3
-    out["gap_1"] = np.linalg.norm(G + dev.y21 * a - C1, axis=-1)
-    out["gap_3"] = np.linalg.norm(G + dev.y23 * a - C3, axis=-1)
-    m = history["m"]
-    interp = np.empty(G.shape[:1] + (4,))
-    for k in range(len(G)):
-        if np.isnan(G[k]).any():
-            interp[k] = np.nan
-            continue
-        points = section(Q[k], G[k], dev, m[k])
-        for i, P in enumerate(points):
-            centre, radius = (C1[k], dev.R1) if i < 2 else (C3[k], dev.R3)
-            interp[k, i] = np.linalg.norm(P - centre) - radius
-    out["interpenetration"] = interp
-    out["clearance_1"], out["clearance_3"] = clearances(G, Q, R1, R3, dev)
+    out["gap_1"] = np.linalg.norm(G + dev.y21 * a - (R1 + dev.c1 * up), axis=-1)
+    out["gap_3"] = np.linalg.norm(G + dev.y23 * a - (R3 + dev.c3 * up), axis=-1)
+    for key in ("interpenetration", "clearance_1", "clearance_3"):
+        out[key] = history[prefix + key]
     return out
 
 
-def clearances(G, Q, R1, R3, dev):
-    """Clearance (m) between the pad and the retaining rings of RB1 and RB3 (negative beyond a ring):
-    R^j sin(alpha^j) minus the largest horizontal distance of the pad's rim on that plate from
-    the plate's axis. G, R1, R3 (..., 3), Q (..., 3, 3)."""
-    a = Q[..., :, 2]
-    return (dev.ring1 - _reach(G - dev.B * a, a, dev.A1, R1), dev.ring3 - _reach(G + dev.B * a, a, dev.A3, R3))
+def ring_passed(history) -> np.ndarray:
+    """Per step: whether the pad is beyond a retaining ring."""
+    return (history["clearance_1"] < 0) | (history["clearance_3"] < 0)
 
 
-def beyond_ring(pose, dev) -> bool:
-    """Whether the pad has passed a retaining ring in ``pose``."""
-    gaps = clearances(pose.G[None], pose.Q[None], pose.R1[None], pose.R3[None], dev)
-    return bool(gaps[0][0] < 0 or gaps[1][0] < 0)
-
-
-def _reach(centre, a, radius, plate):
-    """Largest horizontal distance from the plate's axis of a rim (centre, radius, normal a): at the
-    rim's two points in the vertical plane through the axis a (the radial section, where the rim
-    reaches furthest whenever the pad is near compatible), or along the rim centre's offset
-    where the axis is vertical."""
-    offset = centre - plate
-    lean = a.copy()
-    lean[..., 2] = 0.0
-    horizontal = np.linalg.norm(lean, axis=-1)
-    fallback = offset.copy()
-    fallback[..., 2] = 0.0
-    fallback[..., 0] = np.where(np.linalg.norm(fallback, axis=-1) > 0, fallback[..., 0], 1.0)
-    direction = np.where(horizontal[..., None] > 0, lean, fallback)
-    # the in-rim direction of steepest horizontal extent: direction projected normal to a
-    u = direction - a * np.sum(direction * a, axis=-1, keepdims=True)
-    u /= np.linalg.norm(u, axis=-1, keepdims=True)
-    reach = [np.hypot(*(offset + s * radius * u)[..., :2].T) for s in (-1.0, 1.0)]
-    return np.maximum(*reach)
-
-
-# --- sweeps ------------------------------------------------------------------------------------
+# --- sweeps --------------------------------------------------------------------------------------
 def _case_geometry(geometry, k, n):
+    from dataclasses import fields
+
     from .geometry import Geometry
 
     return Geometry(**{f.name: float(np.broadcast_to(getattr(geometry, f.name), (n,))[k]) for f in fields(geometry)})
@@ -641,7 +818,7 @@ def _case_geometry(geometry, k, n):
 def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="continue", progress=None,
               options=NewtonOptions(), times=None) -> dict:
     """Per-case summaries of a batch of bidirectional cases, with the keys and conventions of
-    ``dccss.studies.sweep.summarize`` (one case after another: histories in space are not batched).
+    ``dccss.studies.sweep.summarize`` (one compiled history after another).
 
     Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,).
     Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and
@@ -665,48 +842,45 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
     out = {k: np.full(n, np.nan) for k in keys}
     out["newton_iterations_max"] = np.zeros(n, dtype=np.int32)
     failure, reached = np.full(n, np.nan), np.full(n, np.nan)
+    mark = options.on_failure == "mark"
     for k in range(n):
         g = _case_geometry(geometry, k, n)
-        dev = Device.of(g)
-        records = []
         try:
-            for step in steps(model, g, Xg[:, k], float(theta2_0[k]), azimuth=float(azimuth[k]), options=options,
-                              times=times):
-                records.append(step)
-                if beyond_ring(step.pose, dev):
-                    if np.isnan(reached[k]):
-                        reached[k] = now[step.n]
-                        if capacity == "error" and options.on_failure != "mark":
-                            err = CapacityError(f"the pad reaches a retaining ring at t = {now[step.n]:.6g} s in the "
-                                                f"case at batch index {(k,)} (capacity: error)")
-                            err.index = (k,)
-                            raise err
-                    if capacity != "continue":
-                        break
+            h = run(model, g, Xg[:, k], float(theta2_0[k]), azimuth=float(azimuth[k]), options=options, times=times,
+                    stop_at_ring=capacity != "continue")
         except ConvergenceError as err:
-            if options.on_failure != "mark":
+            if not mark:
                 err.index = (k,)
                 raise
-            failure[k] = now[len(records)]
+            h = err.history
+            failure[k] = now[0 if h is None else len(h["G"])]
         if progress is not None:
             progress(T - 1, T - 1)
-        if not records:
+        if h is None:
             continue
-        h = collect(records)
+        passed = np.flatnonzero(ring_passed(h))
+        if passed.size:
+            reached[k] = now[passed[0]]
+            if capacity == "error" and not mark:
+                err = CapacityError(f"the pad reaches a retaining ring at t = {reached[k]:.6g} s in the case at batch "
+                                    f"index {(k,)} (capacity: error)")
+                err.index = (k,)
+                raise err
         d = diagnostics(h, g)
-        tilt = np.degrees(d["tilt"])
-        out["theta2_max_abs"][k], out["theta2_end"][k] = tilt.max(), tilt[-1]
+        tilt_deg = np.degrees(d["tilt"])
+        steps = len(tilt_deg)
+        out["theta2_max_abs"][k], out["theta2_end"][k] = tilt_deg.max(), tilt_deg[-1]
         out["rise_max"][k], out["rise_end"][k] = d["rise"].max(), d["rise"][-1]
         out["clearance_min"][k] = min(d["clearance_1"].min(), d["clearance_3"].min())
         for i, c in enumerate("ABCD"):
-            out[f"I_{c}_max"][k] = np.nanmax(d["interpenetration"][1:, i]) if len(records) > 1 else np.nan
+            out[f"I_{c}_max"][k] = np.nanmax(d["interpenetration"][1:, i]) if steps > 1 else np.nan
         its = h["newton_iterations"] + h.get("newton_iterations_stick", 0)
         out["newton_iterations_max"][k] = its.max()
-        out["newton_iterations_mean"][k] = its.sum() / max(len(records) - 1, 1)
-        if model == "stick_slip" and len(records) > 1:
-            turn = [np.arccos(np.clip(0.5 * (np.trace(h["stick_Q"][j] @ h["Q"][j - 1].T) - 1.0), -1.0, 1.0))
-                    for j in range(1, len(records))]
-            out["sticking_rotation_max"][k] = np.degrees(max(turn))
-            out["rise_stick_max"][k] = np.nanmax(h["stick_R3"][1:, 2] - dev.rest3)
+        out["newton_iterations_mean"][k] = its.sum() / max(steps - 1, 1)
+        if model == "stick_slip" and steps > 1:
+            relative = np.einsum("tij,tkj->tik", h["stick_Q"][1:], h["Q"][:-1])
+            turn = np.arccos(np.clip(0.5 * (np.trace(relative, axis1=1, axis2=2) - 1.0), -1.0, 1.0))
+            out["sticking_rotation_max"][k] = np.degrees(turn.max())
+            out["rise_stick_max"][k] = np.nanmax(h["stick_R3"][1:, 2] - device(g).rest3)
     out["capacity_exceeded"] = ~np.isnan(reached)
     return mark_failures(out, failure, reached, capacity)
