@@ -29,9 +29,7 @@ import base64
 import functools
 import math
 import shutil
-import sys
 import tempfile
-import textwrap
 from io import BytesIO
 from pathlib import Path
 
@@ -41,11 +39,11 @@ from .files import write_atomic
 from .mechanics.constraints import Q_NAMES
 from .mechanics.kinematics import CORNERS, interpenetration
 from .results import MODEL_TITLES, geometry_from_attrs
+from .viewer import DPI, FIGSIZE, AnimationError, is_real, open_result, run_command, run_notes  # noqa: F401
 
 FORMATS = (".gif", ".html", ".mp4")
 MAX_FPS = 50  # GIF delays are whole hundredths of a second, and viewers slow down delays below 0.02 s
 MAX_FRAMES = 200
-FIGSIZE, DPI = (11.0, 7.2), 100
 STICK_COLOUR, SPIKE_COLOUR, CURSOR_COLOUR = "tab:red", "crimson", "tab:green"
 DIAGONALS = ((0, 3), (1, 2))  # sticking_diagonal 0: A2D2, 1: B2C2 (indices in CORNERS)
 DIAGONAL_NAMES = ("$A^2D^2$", "$B^2C^2$")
@@ -63,74 +61,26 @@ _STATUS = ({"t": ("t =", 0.25), "step": ("step", 0.345), "Xg": ("$X_g$ =", 0.475
             "rise_stick": ("rise =", 0.72)})
 _STATUS_Y = (0.895, 0.87)
 _TRACES = ((0.055, 0.1, 0.25, 0.175), (0.385, 0.1, 0.25, 0.175), (0.715, 0.1, 0.25, 0.175))
-_HTML_ICONS = {  # the player's buttons in common glyphs, without the web font of matplotlib's template
-    "fa-minus": "\u2212", "fa-plus": "+", "fa-fast-backward": "|\u25c0\u25c0", "fa-fast-forward": "\u25b6\u25b6|",
-    "fa-step-backward": "|\u25c0", "fa-step-forward": "\u25b6|", "fa-play": "\u25b6", "fa-pause": "\u25ae\u25ae"}
-
-
-#: what a bidirectional history must hold to be drawn
-SPATIAL_NAMES = ("Xg_x", "Xg_y", *(f"{v}_{c}" for v in ("G2", "axis", "R3") for c in "xyz"), "tilt", "tilt_azimuth",
-                 "rise")
-
-
-class AnimationError(ValueError):
-    """Bad input to ``animate``: the message names the value and what is allowed."""
-
-
-# --- input ----------------------------------------------------------------------------------------
-def open_result(path):
-    """Load a dccss time-history dataset, or raise AnimationError saying why it is not one."""
-    import xarray as xr
-
-    path = Path(path)
-    if not path.is_file():
-        raise AnimationError(f"result file {str(path)!r} {'is not a file' if path.exists() else 'does not exist'}")
-    try:
-        ds = xr.load_dataset(path)
-    except Exception as err:  # each netCDF engine raises its own errors
-        raise AnimationError(f"cannot read {str(path)!r} as a netCDF file: {err}") from None
-    if ds.attrs.get("model") not in MODEL_TITLES:
-        raise AnimationError(f"{str(path)!r} is not a dccss result: its global attribute 'model' is "
-                             f"{ds.attrs.get('model', 'missing')!r}, expected one of {', '.join(MODEL_TITLES)}")
-    names = SPATIAL_NAMES if ds.attrs.get("motion") == "bidirectional" else Q_NAMES
-    missing = ([] if "t" in ds.dims else ["the time coordinate t"]) + [name for name in names if name not in ds]
-    if missing:
-        raise AnimationError(f"{str(path)!r} is not a dccss time history (a breakaway sweep or a study grid?): it "
-                             f"lacks {', '.join(missing)}")
-    try:
-        geometry_from_attrs(ds.attrs)
-    except (KeyError, ValueError) as err:
-        raise AnimationError(f"{str(path)!r}: the device geometry attributes are missing or invalid ({err})") from None
-    if ds.sizes["t"] == 0:
-        raise AnimationError(f"{str(path)!r} holds no step (the time coordinate t is empty)")
-    return ds
-
-
 def check_options(output, *, start=None, end=None, fps=10, max_frames=MAX_FRAMES, exaggeration=None):
     """Check the options of ``animate`` before any work; returns the output format ('.gif', ...)."""
     suffix = Path(output).suffix.lower()
     if suffix not in FORMATS:
         raise AnimationError(f"output {str(output)!r}: unknown extension {Path(output).suffix or '(none)'!r}, "
                              f"expected one of {', '.join(FORMATS)}")
-    if not _real(fps) or not 0 < fps <= MAX_FPS:
+    if not is_real(fps) or not 0 < fps <= MAX_FPS:
         raise AnimationError(f"fps must be a number with 0 < fps <= {MAX_FPS}, got {fps!r}")
     if isinstance(max_frames, bool) or not isinstance(max_frames, int | np.integer) or max_frames < 2:
         raise AnimationError(f"max_frames must be an integer >= 2, got {max_frames!r}")
-    if exaggeration is not None and (not _real(exaggeration) or exaggeration < 0):
+    if exaggeration is not None and (not is_real(exaggeration) or exaggeration < 0):
         raise AnimationError(f"exaggeration must be a number >= 0 (0: none) or None (automatic), got {exaggeration!r}")
     for name, value in (("start", start), ("end", end)):
-        if value is not None and not _real(value):
+        if value is not None and not is_real(value):
             raise AnimationError(f"{name} must be a finite time in seconds or None, got {value!r}")
     if start is not None and end is not None and start > end:
         raise AnimationError(f"start ({start:g} s) is after end ({end:g} s): the time range is empty")
     if suffix == ".mp4":
         _check_ffmpeg()
     return suffix
-
-
-def _real(value):
-    return (isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
-            and math.isfinite(value))
 
 
 def _check_ffmpeg():
@@ -235,7 +185,7 @@ def _spike_factor(I, exaggeration):
 
 def _time_format(ds):
     dt = ds.attrs.get("dt_s")
-    if not _real(dt) or dt <= 0:
+    if not is_real(dt) or dt <= 0:
         steps = np.diff(ds["t"].values)
         dt = float(steps[steps > 0].min()) if (steps > 0).any() else 1.0
     return f".{max(0, math.ceil(-math.log10(dt) - 1e-9))}f"
@@ -258,11 +208,11 @@ class Scene:
     """
 
     def __init__(self, fig, ds, frames, exaggeration=None, name=""):
-        from .drawing import _shapes
+        from .drawing import body_shapes
 
         self.fig, self.ds = fig, ds
         self.g = geometry_from_attrs(ds.attrs)
-        self.shapes = _shapes(self.g)
+        self.shapes = body_shapes(self.g)
         self.t = ds["t"].values.astype(float)
         self.steps = ds["step"].values if "step" in ds.coords else np.arange(self.t.size)
         self.q = _config(ds)
@@ -327,7 +277,7 @@ class Scene:
 
     def _extent(self, frames):
         """Points (cm) enclosing every shown configuration."""
-        from .drawing import _pose
+        from .drawing import placed
 
         pts = []
         for q in (self.q, self.qs) if self.stick else (self.q,):
@@ -336,13 +286,13 @@ class Scene:
                 box = np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
                 Rx, Ry, th = (v[:, None] for v in _body(q, i, frames))
                 ok = np.isfinite(Rx + Ry + th)[:, 0]
-                pts.append(100 * _pose(box[None], Rx[ok], Ry[ok], th[ok]).reshape(-1, 2))
+                pts.append(100 * placed(box[None], Rx[ok], Ry[ok], th[ok]).reshape(-1, 2))
         return np.vstack(pts)
 
     def _insets(self, frames):
         from matplotlib.transforms import Bbox, TransformedBbox
 
-        from .drawing import I_LABEL, _length_unit
+        from .drawing import I_LABEL, length_unit
 
         self.zoom = {}
         for j, c in enumerate(CORNERS):
@@ -360,7 +310,7 @@ class Scene:
             ins.set_aspect("equal")
             ins.set_xticks([])
             ins.set_yticks([])
-            factor, unit = _length_unit(2 * half)
+            factor, unit = length_unit(2 * half)
             ins.text(0.5, _LABEL_STRIP / 2, f"window {_number(factor * 2 * half)} {unit} wide", fontsize=7,
                      transform=ins.transAxes, ha="center", va="center")
             title = self._add(_field(self.fig, 0.36, 1.04, f"{I_LABEL[c]} =", ins.transAxes, fontsize=8.5))
@@ -371,7 +321,7 @@ class Scene:
         from matplotlib.lines import Line2D
         from matplotlib.ticker import MaxNLocator
 
-        from .drawing import _step_path
+        from .drawing import step_path
 
         t, ds = self.t, self.ds
         rise = ds["rise"].values if "rise" in ds else self.q["Ry3"] - self.q["Ry3"][0]
@@ -383,7 +333,7 @@ class Scene:
         for box, (label, end, stick) in zip(_TRACES, series):
             ax = self.fig.add_axes(box)
             if stick is not None and t.size > 1:
-                ax.plot(*_step_path(t, end, stick), color=STICK_COLOUR, lw=0.6, alpha=0.6)
+                ax.plot(*step_path(t, end, stick), color=STICK_COLOUR, lw=0.6, alpha=0.6)
             ax.plot(t, end, color="k", lw=1.3)
             ax.set_xlim(t[0], t[-1] if t[-1] > t[0] else t[0] + 1e-3)
             ax.set_xlabel("t (s)", labelpad=1)
@@ -413,7 +363,7 @@ class Scene:
             value = attrs.get(key)
             if key == "failure_time_s" and not int(attrs.get("failed", 0)):
                 continue
-            if _real(value) and lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
+            if is_real(value) and lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
                 ax.axvline(value, color=colour, ls="--", lw=1.0)
                 ax.set_xlim(lo, max(hi, value))
                 drawn.append((label, colour))
@@ -422,7 +372,7 @@ class Scene:
     def _texts(self, name):
         attrs, g = self.ds.attrs, self.g
         head = f"{MODEL_TITLES[attrs['model']]} model"
-        if _real(attrs.get("dt_s")):
+        if is_real(attrs.get("dt_s")):
             head += f", Δt = {attrs['dt_s']:g} s"
         head += (f";  $R^1$ = {g.R1:g} m, $\\alpha^1$ = {np.degrees(g.alpha1):.3g}°, $\\alpha^{{21}}$ = "
                  f"{np.degrees(g.alpha21):.3g}°, $h^2$ = {100 * g.h2:.3g} cm")
@@ -430,7 +380,7 @@ class Scene:
         if label:
             head += f"  —  {label}"
         self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=11)
-        notes = _notes(attrs)
+        notes = run_notes(attrs)
         if notes:
             self.fig.text(0.5, 0.006, notes, ha="center", va="bottom", fontsize=8, color="tab:red", linespacing=1.1,
                           bbox=dict(fc="#fff4f0", ec="tab:red", lw=0.6, pad=1.5))
@@ -446,18 +396,18 @@ class Scene:
     # --- one step ---------------------------------------------------------------------------
     def show(self, n):
         """Move every dynamic artist to step n (index in the dataset)."""
-        from .drawing import _pose
+        from .drawing import placed
 
-        xy = {i: 100 * _pose(self.shapes[i], *_body(self.q, i, n)) for i in (1, 2, 3)}
+        xy = {i: 100 * placed(self.shapes[i], *_body(self.q, i, n)) for i in (1, 2, 3)}
         for i, patch in self.bodies.items():
             patch.set_xy(xy[i])
-        pts = _pose(self.g.pad_corners, *_body(self.q, 2, n))
+        pts = placed(self.g.pad_corners, *_body(self.q, 2, n))
         self.corners.set_data(100 * pts[:, 0], 100 * pts[:, 1])
         out = pts - [self.q["Rx2"][n], self.q["Ry2"][n]]
         for label, p, d in zip(self.labels, 100 * pts, out / np.hypot(*out.T)[:, None]):
             label.xy, label.xyann = tuple(p), tuple(11 * d)  # the label outside its corner
-        centres = np.array([_pose(self.g.circle_centres[0], *_body(self.q, 1, n)),
-                            _pose(self.g.circle_centres[1], *_body(self.q, 3, n))])
+        centres = np.array([placed(self.g.circle_centres[0], *_body(self.q, 1, n)),
+                            placed(self.g.circle_centres[1], *_body(self.q, 3, n))])
         self.link.set_data(100 * centres[:, 0], 100 * centres[:, 1])
         self._spikes(n, pts, centres)
         self._zooms(n, xy, pts, centres)
@@ -482,7 +432,7 @@ class Scene:
         self.spikes.set_data(xs, ys)
 
     def _zooms(self, n, xy, pts, centres):
-        from .drawing import _length_unit
+        from .drawing import length_unit
 
         for j, c in enumerate(CORNERS):
             ins, bodies, segment, point, title, half = self.zoom[c]
@@ -495,13 +445,13 @@ class Scene:
             ins.set_xlim(p[0] - 100 * half, p[0] + 100 * half)
             ins.set_ylim(p[1] - 100 * half, p[1] + 100 * half)
             value = float(self.I[n, j])
-            factor, unit = _length_unit(value)
+            factor, unit = length_unit(value)
             title.set_text(f"{factor * value:.3g} {unit}{' (gap)' if value < 0 else ''}")
             title.set_color(SPIKE_COLOUR if value > 0 else "0.25")
 
     def _ghost(self, n):
         """Draw the end of sticking of step n; returns (theta2, diagonal) or None (no sticking phase)."""
-        from .drawing import _pose
+        from .drawing import placed
 
         valid = all(math.isfinite(v[n]) for v in self.qs.values())
         for artist in (*self.ghosts.values(), self.ghost_corners, self.diagonal):
@@ -510,10 +460,10 @@ class Scene:
             return None
         for i, patch in self.ghosts.items():
             pose = _body(self.qs, i, n)
-            patch.set_xy(100 * _pose(self.shapes[i], *pose))
+            patch.set_xy(100 * placed(self.shapes[i], *pose))
             # RB1 follows the ground in both phases: outline it only where it differs
             patch.set_visible(i != 1 or not np.allclose(pose, _body(self.q, i, n), rtol=0, atol=1e-9))
-        pts = 100 * _pose(self.g.pad_corners, *_body(self.qs, 2, n))
+        pts = 100 * placed(self.g.pad_corners, *_body(self.qs, 2, n))
         self.ghost_corners.set_data(pts[:, 0], pts[:, 1])
         d = int(self.diag[n]) if self.diag is not None else None
         self.diagonal.set_visible(d in (0, 1))
@@ -575,28 +525,6 @@ def _limits(ax, points, margin=2.0):
     ax.set_aspect("equal")
     ax.set_xlabel("X (cm)", labelpad=1)
     ax.set_ylabel("Y (cm)", labelpad=1)
-
-
-def _notes(attrs):
-    """The events of the run, for the foot of every frame: solver failure, capacity exceedance, stop."""
-    notes = []
-    if int(attrs.get("failed", 0)):
-        when = attrs.get("failure_time_s")
-        note = "The solver failed" + (f" at t = {when:g} s" if _real(when) else "")
-        note += ": the data end at the last converged step."
-        if attrs.get("failure_message"):
-            note += " " + textwrap.shorten(str(attrs["failure_message"]), 100, placeholder=" ...")
-        notes.append(note)
-    if _real(attrs.get("capacity_exceeded_at_s")):
-        note = (f"The pad reaches the retaining ring of {attrs.get('capacity_exceeded_plate', 'a plate')} "
-                f"at t = {attrs['capacity_exceeded_at_s']:g} s")
-        if _real(attrs.get("capacity_exceeded_by_m")):
-            note += f" and passes it by up to {100 * attrs['capacity_exceeded_by_m']:.3g} cm"
-        note += ": the excitation exceeds the device capacity."
-        if _real(attrs.get("stopped_at_s")):
-            note += f" The run was stopped there (t = {attrs['stopped_at_s']:g} s)."
-        notes.append(note)
-    return "\n".join(textwrap.fill(note, 175) for note in notes)
 
 
 def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=""):
@@ -668,7 +596,7 @@ def _palette(images):
 @functools.cache
 def _writer_classes():
     """matplotlib's writers, taking each frame from the canvas as drawn (see _Blitter)."""
-    from matplotlib import _animation_data, animation
+    from matplotlib import animation
     from PIL import Image
 
     class Gif(animation.PillowWriter):
@@ -683,21 +611,21 @@ def _writer_classes():
             self._frames[0].save(self.outfile, format="GIF", save_all=True, append_images=self._frames[1:],
                                  duration=round(1000 / self.fps), loop=0, optimize=True)
 
-    class Html(animation.HTMLWriter):
+    class Html(animation.AbstractMovieWriter):
         def __init__(self, fps, palette):
-            super().__init__(fps=fps, embed_frames=True, embed_limit=2.0**20)
-            self.palette = palette
+            super().__init__(fps=fps)
+            self.palette, self.frames = palette, []
+
+        def setup(self, fig, outfile, dpi=None):
+            super().setup(fig, outfile, dpi)
 
         def grab_frame(self, **savefig_kwargs):
             png = BytesIO()
             _rgb(self.fig).quantize(palette=self.palette, dither=Image.Dither.NONE).save(png, format="PNG")
-            self._saved_frames.append(base64.encodebytes(png.getvalue()).decode("ascii"))
+            self.frames.append(base64.b64encode(png.getvalue()).decode("ascii"))
 
         def finish(self):
-            Path(self.outfile).write_text(_html_page(self._saved_frames, 1000 / self.fps, _animation_data),
-                                          encoding="utf-8")
-            if self._tmpdir:
-                self._tmpdir.cleanup()
+            Path(self.outfile).write_text(html_page(self.frames, 1000 / self.fps), encoding="utf-8")
 
     class Mp4(animation.FFMpegWriter):
         def __init__(self, fps, palette):
@@ -709,20 +637,61 @@ def _writer_classes():
     return {".gif": Gif, ".html": Html, ".mp4": Mp4}
 
 
-def _html_page(frames, interval_ms, templates):
-    """One HTML document: matplotlib's player with a fixed id, text icons and the frames embedded."""
-    from matplotlib.animation import _embedded_frames
+#: the HTML player: frames in a JavaScript array, a slider, step and play buttons; no script or font
+#: from elsewhere
+_HTML_PAGE = """<!DOCTYPE html>
+<html>
+<head>
+<meta charset="utf-8">
+<title>dccss animation</title>
+<style>
+body {{ font-family: sans-serif; }}
+#controls {{ display: flex; gap: 0.4em; align-items: center; margin-top: 0.4em; }}
+#controls input[type=range] {{ flex: 1; }}
+</style>
+</head>
+<body>
+<img id="frame" alt="dccss animation frame" src="">
+<div id="controls">
+<button onclick="step(-{count})" title="first">|&#9664;&#9664;</button>
+<button onclick="step(-1)" title="previous">|&#9664;</button>
+<button id="play" onclick="toggle()" title="play / pause">&#9654;</button>
+<button onclick="step(1)" title="next">&#9654;|</button>
+<button onclick="step({count})" title="last">&#9654;&#9654;|</button>
+<input id="slider" type="range" min="0" max="{last}" value="0" oninput="show(+this.value)">
+<span id="label"></span>
+</div>
+<script>
+var frames = new Array({count});
+{frames}
+var current = 0, timer = null;
+function show(k) {{
+  current = Math.max(0, Math.min({last}, k));
+  document.getElementById("frame").src = frames[current];
+  document.getElementById("slider").value = current;
+  document.getElementById("label").textContent = "frame " + (current + 1) + " of {count}";
+}}
+function step(d) {{ pause_animation(); show(current + d); }}
+function pause_animation() {{
+  if (timer !== null) {{ clearInterval(timer); timer = null; }}
+  document.getElementById("play").innerHTML = "&#9654;";
+}}
+function toggle() {{
+  if (timer !== null) {{ pause_animation(); return; }}
+  document.getElementById("play").innerHTML = "&#9646;&#9646;";
+  timer = setInterval(function () {{ show((current + 1) % {count}); }}, {interval});
+}}
+show(0);
+</script>
+</body>
+</html>
+"""
 
-    script = templates.JS_INCLUDE[templates.JS_INCLUDE.index("<script"):]  # without the web-font link
-    icons = "".join(f".{name}:before {{ content: \"{text}\"; }}\n" for name, text in _HTML_ICONS.items())
-    style = templates.STYLE_INCLUDE.replace("</style>", ".fa { font-style: normal; }\n.fa-flip-horizontal { display: "
-                                            f"inline-block; transform: scaleX(-1); }}\n{icons}</style>")
-    player = templates.DISPLAY_TEMPLATE.format(id="dccss", Nframes=len(frames),
-                                               fill_frames=_embedded_frames(frames, "png"),
-                                               interval=max(1, round(interval_ms)), once_checked="",
-                                               loop_checked="checked", reflect_checked="")
-    return ("<!DOCTYPE html>\n<html>\n<head>\n<meta charset=\"utf-8\">\n<title>dccss animation</title>\n"
-            f"{style}</head>\n<body>\n{script}{player}</body>\n</html>\n")
+
+def html_page(frames, interval_ms):
+    """One self-contained HTML document playing ``frames`` (base64 PNG) every ``interval_ms``."""
+    data = "\n".join(f'frames[{k}] = "data:image/png;base64,{frame}";' for k, frame in enumerate(frames))
+    return _HTML_PAGE.format(count=len(frames), last=len(frames) - 1, frames=data, interval=max(1, round(interval_ms)))
 
 
 # --- entry points --------------------------------------------------------------------------------
@@ -812,15 +781,3 @@ def _command(args: argparse.Namespace) -> int:
     return run_command("animate", lambda: animate(args.result, args.output, start=args.start, end=args.end,
                                                   fps=args.fps, max_frames=args.max_frames,
                                                   exaggeration=args.exaggeration), args.quiet)
-
-
-def run_command(name, call, quiet) -> int:
-    """A drawing sub-command: ``call()`` returns its summary line; an AnimationError is exit code 2."""
-    try:
-        line = call()
-    except AnimationError as err:
-        print(f"dccss {name}: error: {err}", file=sys.stderr)
-        return 2
-    if not quiet:
-        print(f"dccss {name}: wrote {line}")
-    return 0

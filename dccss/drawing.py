@@ -3,8 +3,8 @@
 Shared by the paper's figures (``dccss.paper.figures``), the study plots (``dccss.studies.plots``)
 and the animations (``dccss.animation``): figures without pyplot (freed when unreferenced), laid
 out once and frozen (``freeze``), saved as PNG and PDF without varying metadata (``save``); the
-plates, pad and rings drawn to scale from a configuration (``_device``) with zooms on the pad's
-corners (``_corner_inset``). Lengths are plotted in cm, mm or µm (``_length_unit``), angles in
+plates, pad and rings drawn to scale from a configuration (``draw_device``) with zooms on the pad's
+corners (``corner_inset``). Lengths are plotted in cm, mm or µm (``length_unit``), angles in
 degrees.
 """
 
@@ -33,7 +33,7 @@ PNG_METADATA = {"Software": None}
 PDF_METADATA = {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": None}
 
 
-def _figure(size, nrows=1, ncols=1, **kwargs):
+def new_figure(size, nrows=1, ncols=1, **kwargs):
     """A constrained-layout figure of fixed size with a bottom strip for the caption."""
     fig = Figure(figsize=size, dpi=DPI, layout="constrained")
     FigureCanvasAgg(fig)  # one Agg renderer for the layout pass and the PNG: text metrics computed once
@@ -74,42 +74,42 @@ def freeze(fig):
     return fig
 
 
-def _length_unit(*values):
+def length_unit(*values):
     """(factor, unit) making lengths in m readable: µm below 1 mm, else mm."""
     peak = max((float(np.nanmax(np.abs(v))) for v in values if np.size(v)), default=0.0)
     return (1e6, "µm") if peak < 1e-3 else (1e3, "mm")
 
 
-def _headroom(*axes, frac=0.3):
+def headroom(*axes, frac=0.3):
     """Extend the y range upwards to leave room for a legend inside the axes."""
     for ax in axes:
         lo, hi = ax.get_ylim()
         ax.set_ylim(lo, hi + frac * (hi - lo))
 
 
-def _legend(ax, *axes, **kwargs):
+def legend_on(ax, *axes, **kwargs):
     """One legend for an axes and its twins."""
     handles = [h for a in (ax, *axes) for h in a.get_legend_handles_labels()[0]]
     ax.legend(handles, [h.get_label() for h in handles], **{"fontsize": 8, **kwargs})
 
 
-def _twin(ax, colour, label):
+def twin_axis(ax, colour, label):
     tw = ax.twinx()
     tw.set_ylabel(label, color=colour)
     tw.tick_params(axis="y", colors=colour)
     return tw
 
 
-def _corners(ax, t, ds, which, factor, unit, what="interpenetration, < 0: gap"):
+def plot_corners(ax, t, ds, which, factor, unit, what="interpenetration, < 0: gap"):
     for c in which:
         ax.plot(t, factor * ds[f"I_{c}"].values, label=I_LABEL[c], **CORNER_STYLE[c])
     ax.axhline(0, color="0.6", lw=0.6)
     ax.set_ylabel(f"{what} ({unit})")
-    _headroom(ax)
+    headroom(ax)
     ax.legend(fontsize=8, ncols=len(which), loc="upper right")
 
 
-def _grid(n, rows=None, cols=None):
+def grid_shape(n, rows=None, cols=None):
     """(rows, columns) of a grid of n panels with at most ``rows`` rows or ``cols`` columns."""
     if rows:
         rows = min(rows, n)
@@ -118,39 +118,39 @@ def _grid(n, rows=None, cols=None):
     return -(-n // cols), cols
 
 
-def _drop_unused(axes, n, by_columns=False):
+def drop_unused(axes, n, by_columns=False):
     """Remove the grid cells after the n-th panel (filled row by row, or column by column)."""
     for ax in (axes.T if by_columns else axes).ravel()[n:]:
         ax.remove()
 
 
 # --- drawing the device to scale --------------------------------------------------------------
-def _pose(u, Rx, Ry, theta_deg):
+def placed(u, Rx, Ry, theta_deg):
     """Global coordinates R + A(theta) u of local points u (..., 2)."""
     c, s = np.cos(np.radians(theta_deg)), np.sin(np.radians(theta_deg))
     u = np.asarray(u, dtype=float)
     return np.stack([Rx + c * u[..., 0] - s * u[..., 1], Ry + s * u[..., 0] + c * u[..., 1]], axis=-1)
 
 
-def _q(ds, suffix=""):
+def configuration_of(ds, suffix=""):
     """Generalised coordinates {name: value} of a 0-d dataset (m, degrees)."""
     return {name: float(ds[name + suffix]) for name in Q_NAMES}
 
 
-def _body(q, i):
+def body_pose(q, i):
     return q[f"Rx{i}"], q[f"Ry{i}"], q[f"theta{i}"]
 
 
-def _shapes(g):
+def body_shapes(g):
     """Local outlines of RB1, RB2, RB3 with fine arcs (interpenetrations are µm to mm)."""
     return {1: g.plate_outline(1, n_arc=1441), 2: g.pad_outline(n_arc=241), 3: g.plate_outline(3, n_arc=1441)}
 
 
-def _device(ax, g, q, shapes, *, colour=None, ls="-", label=None, fill=True, corners=False, lw=0.8):
+def draw_device(ax, g, q, shapes, *, colour=None, ls="-", label=None, fill=True, corners=False, lw=0.8):
     """Draw RB1, RB2, RB3 at q (filled, or outlined in ``colour``) in cm; return their points."""
     drawn = []
     for i in (1, 3, 2):
-        xy = 100 * _pose(shapes[i], *_body(q, i))
+        xy = 100 * placed(shapes[i], *body_pose(q, i))
         if fill:
             ax.add_artist(Polygon(xy, closed=True, fc=PAD_COLOUR if i == 2 else PLATE_COLOUR, ec="k", lw=lw,
                                  alpha=0.85 if i == 2 else 1.0, label=label if i == 2 else None))
@@ -159,17 +159,17 @@ def _device(ax, g, q, shapes, *, colour=None, ls="-", label=None, fill=True, cor
                                  label=label if i == 2 else None))
         drawn.append(xy)
     if corners:
-        pts = 100 * _pose(g.pad_corners, *_body(q, 2))
+        pts = 100 * placed(g.pad_corners, *body_pose(q, 2))
         for (x, y), c, dx, dy in zip(pts, CORNERS, (-1, 1, -1, 1), (-1, -1, 1, 1)):
             ax.annotate(f"${c}^2$", (x, y), xytext=(9 * dx, 7 * dy), textcoords="offset points", fontsize=9,
                         ha="center", va="center", bbox=dict(fc="white", ec="none", alpha=0.7, pad=0.5))
-    c1 = 100 * _pose(g.circle_centres[0], *_body(q, 1))
-    c3 = 100 * _pose(g.circle_centres[1], *_body(q, 3))
+    c1 = 100 * placed(g.circle_centres[0], *body_pose(q, 1))
+    c3 = 100 * placed(g.circle_centres[1], *body_pose(q, 3))
     ax.plot([c1[0], c3[0]], [c1[1], c3[1]], color=colour or "0.3", ls=":", lw=0.9)
     return np.vstack(drawn)
 
 
-def _frame(ax, points, margin=3.0, extra_y=(0.0, 0.0)):
+def frame_points(ax, points, margin=3.0, extra_y=(0.0, 0.0)):
     """Equal-aspect limits around the drawn points (cm), with room below/above for insets."""
     lo, hi = points.min(axis=0) - margin, points.max(axis=0) + margin
     ax.set_xlim(lo[0], hi[0])
@@ -179,17 +179,17 @@ def _frame(ax, points, margin=3.0, extra_y=(0.0, 0.0)):
     ax.set_ylabel("Y (cm)")
 
 
-def _corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
+def corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
     """Zoom on one pad corner, with the radial interpenetration segment and its value."""
     i = CORNERS.index(corner)
     plate, radius = (1, g.R1) if corner in "AB" else (3, g.R3)
-    point = _pose(g.pad_corners[i], *_body(q, 2))
-    centre = _pose(g.circle_centres[0 if plate == 1 else 1], *_body(q, plate))
+    point = placed(g.pad_corners[i], *body_pose(q, 2))
+    centre = placed(g.circle_centres[0 if plate == 1 else 1], *body_pose(q, plate))
     foot = centre + radius * (point - centre) / np.hypot(*(point - centre))
     half = max(2.5 * abs(value), 0.5e-3)
     ins = ax.inset_axes(bounds)
     for j in (1, 3, 2):
-        ins.add_artist(Polygon(100 * _pose(shapes[j], *_body(q, j)), closed=True, ec="k", lw=0.8,
+        ins.add_artist(Polygon(100 * placed(shapes[j], *body_pose(q, j)), closed=True, ec="k", lw=0.8,
                               fc=PAD_COLOUR if j == 2 else PLATE_COLOUR, alpha=0.7 if j == 2 else 1.0))
     ins.plot(100 * np.array([point[0], foot[0]]), 100 * np.array([point[1], foot[1]]), color="crimson", lw=1.5)
     ins.plot(*(100 * point), "o", color="crimson", ms=3)
@@ -198,7 +198,7 @@ def _corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
     ins.set_aspect("equal")
     ins.set_xticks([])
     ins.set_yticks([])
-    factor, unit = _length_unit(value)
+    factor, unit = length_unit(value)
     ins.set_title(f"{I_LABEL[corner]} = {factor * value:.3g} {unit}  (window {2e3 * half:.2g} mm)", fontsize=8,
                   color="crimson" if loaded else "k", pad=2)
     for side in ins.spines.values():
@@ -206,7 +206,7 @@ def _corner_inset(ax, g, q, shapes, corner, value, bounds, loaded):
     ax.indicate_inset_zoom(ins, edgecolor="0.5", alpha=0.5, lw=0.6)
 
 
-def _step_path(t, end, stick):
+def step_path(t, end, stick):
     """Polyline start -> end of sticking (at mid-step) -> end of slipping, for every step."""
     tt = np.empty(2 * t.size - 1)
     vv = np.empty_like(tt)

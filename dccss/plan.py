@@ -3,7 +3,7 @@
 Works on any dccss time history: a bidirectional one (``results.spatial_dataset``) and a planar
 one, read as motion along x (``view``). The section at an instant is the device cut by the
 vertical plane through its pad axis (the plane it leans in), drawn to scale by the planar
-drawing (``drawing._device``): in that plane the pad is tilted by the tilt, and what lies off
+drawing (``drawing.draw_device``): in that plane the pad is tilted by the tilt, and what lies off
 it (a few mm of RB3 after a slip) is projected onto it.
 """
 
@@ -160,11 +160,11 @@ def draw_traces(ax, v: View):
 
 def draw_section(ax, v: View, g, n, shapes=None):
     """The device to scale in the vertical plane of its pad axis at step n (cm); returns its points."""
-    shapes = shapes or drawing._shapes(g)
+    shapes = shapes or drawing.body_shapes(g)
     q = section_q(v, n, g)
-    points = drawing._device(ax, g, q, shapes)
+    points = drawing.draw_device(ax, g, q, shapes)
     if v.stick is not None and n > 0:
-        drawing._device(ax, g, section_q(v, n, g, stick=True), shapes, colour="crimson", fill=False, lw=0.6)
+        drawing.draw_device(ax, g, section_q(v, n, g, stick=True), shapes, colour="crimson", fill=False, lw=0.6)
     ax.set_aspect("equal")
     return points
 
@@ -189,13 +189,13 @@ def figure(ds, at=None, title=None):
     g = geometry_from_attrs(ds.attrs)
     v = view(ds)
     steps = instants(v, at)
-    fig = drawing._figure((11.0, 8.6), nrows=None)
+    fig = drawing.new_figure((11.0, 8.6), nrows=None)
     grid = fig.add_gridspec(3, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0))
     plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
     trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
     draw_plan(plan, v, g, steps[-1])
     plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
-    drawing._legend(plan, fontsize=8, loc="best")
+    drawing.legend_on(plan, fontsize=8, loc="best")
     draw_axis_trace(trace, v)
     trace.set_title("(b) trace of the pad axis", fontsize=9)
     trace.legend(fontsize=8, loc="best")
@@ -204,12 +204,12 @@ def figure(ds, at=None, title=None):
     for n in steps:
         traces.axvline(v.t[n], color="0.5", lw=0.7, ls=":")
     traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9)
-    drawing._legend(traces, right, fontsize=8, loc="upper right")
-    shapes = drawing._shapes(g)
+    drawing.legend_on(traces, right, fontsize=8, loc="upper right")
+    shapes = drawing.body_shapes(g)
     for k, n in enumerate(steps):
         ax = fig.add_subplot(grid[2, k])
         points = draw_section(ax, v, g, n, shapes)
-        drawing._frame(ax, points, margin=2.0)
+        drawing.frame_points(ax, points, margin=2.0)
         azimuth = v.tilt_azimuth[n]
         plane = f", leaning towards {azimuth:.0f} deg" if np.isfinite(azimuth) else ""
         ax.set_title(f"({chr(100 + k)}) t = {v.t[n]:.3g} s: tilt {v.tilt[n]:.2f} deg{plane}", fontsize=9)
@@ -225,11 +225,11 @@ def figure(ds, at=None, title=None):
 # --- command line ------------------------------------------------------------------------------
 def plot(path, output, at=None) -> str:
     """Write the summary figure of a result history to ``output`` (.png or .pdf); returns a one-line
-    summary. Errors (``animation.AnimationError``) name the file or value; nothing is written then."""
+    summary. Errors (``viewer.AnimationError``) name the file or value; nothing is written then."""
     from pathlib import Path
 
-    from .animation import AnimationError, open_result
     from .files import write_atomic
+    from .viewer import AnimationError, open_result
 
     suffix = Path(output).suffix.lower()
     if suffix not in (".png", ".pdf"):
@@ -263,7 +263,7 @@ def add_parser(subparsers):
 
 
 def _command(args) -> int:
-    from .animation import run_command
+    from .viewer import run_command
 
     return run_command("plot", lambda: plot(args.result, args.output, args.at), args.quiet)
 
@@ -276,12 +276,12 @@ class Scene:
     ``animation.Scene``: ``show(n)`` and ``dynamic``; ``frames`` fix the limits."""
 
     def __init__(self, fig, ds, frames, exaggeration=None, name=""):
-        from .animation import FIGSIZE, _notes
+        from .viewer import FIGSIZE, run_notes
 
         self.fig, self.ds = fig, ds
         self.g = g = geometry_from_attrs(ds.attrs)
         self.v = v = view(ds)
-        self.shapes = drawing._shapes(g)
+        self.shapes = drawing.body_shapes(g)
         self.dynamic = []
         frames = np.asarray(frames, dtype=int)
         fig.set_size_inches(*FIGSIZE)
@@ -310,9 +310,10 @@ class Scene:
         points = []
         for n in frames:
             q = section_q(v, int(n), g)
-            points.append(np.vstack([100 * drawing._pose(self.shapes[i], *drawing._body(q, i)) for i in (1, 2, 3)]))
+            points.append(np.vstack([100 * drawing.placed(self.shapes[i], *drawing.body_pose(q, i))
+                                     for i in (1, 2, 3)]))
         points = np.vstack(points)
-        drawing._frame(section, points, margin=2.0)
+        drawing.frame_points(section, points, margin=2.0)
         section.set_xlabel("along the lean of the pad axis (cm)")
         section.set_ylabel("z (cm)")
         self.bodies = {i: self._add(section.add_patch(Polygon(np.zeros((2, 2)), closed=True, ec="k", lw=0.8,
@@ -330,12 +331,12 @@ class Scene:
         trace.set_title("trace of the pad axis", fontsize=9)
         self.tip = self._add(trace.plot([], [], "o", color="tab:blue", ms=5)[0])
         right = draw_traces(traces, v)
-        drawing._legend(traces, right, fontsize=7, loc="upper right")
+        drawing.legend_on(traces, right, fontsize=7, loc="upper right")
         self.cursor = self._add(traces.axvline(v.t[0], color="crimson", lw=1.0))
         title = ds.attrs.get("title", "dccss history")
         fig.suptitle(f"{title}{' - ' + name if name else ''}", fontsize=10)
         self.status = self._add(fig.text(0.5, 0.935, "", ha="center", fontsize=9))
-        notes = _notes(ds.attrs)
+        notes = run_notes(ds.attrs)
         if notes:
             fig.text(0.5, 0.01, notes, ha="center", va="bottom", fontsize=7, color="crimson")
 
@@ -354,14 +355,15 @@ class Scene:
             rim_patch.set_xy(100 * rim(v.G[n] + sign * float(g.B) * a, a, radius))
         q = section_q(v, n, g)
         for i, patch in self.bodies.items():
-            patch.set_xy(100 * drawing._pose(self.shapes[i], *drawing._body(q, i)))
+            patch.set_xy(100 * drawing.placed(self.shapes[i], *drawing.body_pose(q, i)))
         for i, patch in self.sticks.items():
             visible = n > 0 and np.isfinite(v.stick["tilt"][n])
             patch.set_visible(bool(visible))
             if visible:
-                patch.set_xy(100 * drawing._pose(self.shapes[i], *drawing._body(section_q(v, n, g, stick=True), i)))
-        c1 = 100 * drawing._pose(g.circle_centres[0], *drawing._body(q, 1))
-        c3 = 100 * drawing._pose(g.circle_centres[1], *drawing._body(q, 3))
+                stuck = section_q(v, n, g, stick=True)
+                patch.set_xy(100 * drawing.placed(self.shapes[i], *drawing.body_pose(stuck, i)))
+        c1 = 100 * drawing.placed(g.circle_centres[0], *drawing.body_pose(q, 1))
+        c3 = 100 * drawing.placed(g.circle_centres[1], *drawing.body_pose(q, 3))
         self.line.set_data([c1[0], c3[0]], [c1[1], c3[1]])
         az = np.radians(np.nan_to_num(v.tilt_azimuth[n]))
         self.tip.set_data([v.tilt[n] * np.cos(az)], [v.tilt[n] * np.sin(az)])

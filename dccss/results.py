@@ -38,7 +38,8 @@ _COORD_LONG = {
 }
 
 
-def _var(dims, data, units, long_name, **attrs):
+def variable(dims, data, units, long_name, **attrs):
+    """A CF variable: ``data`` on ``dims`` with its ``units`` and ``long_name`` (and any other attributes)."""
     return xr.Variable(dims, data, {"units": units, "long_name": long_name, **attrs})
 
 
@@ -47,7 +48,7 @@ def coordinates(q, dims, suffix="", when=""):
     for k, name in enumerate(Q_NAMES):
         angle = name.startswith("theta")
         data = np.degrees(q[..., k]) if angle else q[..., k]
-        out[name + suffix] = _var(dims, data, "degree" if angle else "m", _COORD_LONG[name] + when)
+        out[name + suffix] = variable(dims, data, "degree" if angle else "m", _COORD_LONG[name] + when)
     return out
 
 
@@ -88,7 +89,7 @@ def global_attrs(title, history, **extra) -> dict:
 
 def _variables(table, dims) -> dict:
     """xarray variables from {name: (values, units, long_name[, attrs])}."""
-    return {name: _var(dims, values, units, long_name, **(rest[0] if rest else {}))
+    return {name: variable(dims, values, units, long_name, **(rest[0] if rest else {}))
             for name, (values, units, long_name, *rest) in table.items()}
 
 
@@ -101,25 +102,25 @@ def history_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
     t = (TIME,)
     q = history["q"]
     data = {
-        "Xg": _var(t, excitation.displacement(times), "m", "imposed ground displacement X_g"),
-        "Xg_dot": _var(t, excitation.velocity(times), "m s-1", "imposed ground velocity dX_g/dt"),
+        "Xg": variable(t, excitation.displacement(times), "m", "imposed ground displacement X_g"),
+        "Xg_dot": variable(t, excitation.velocity(times), "m s-1", "imposed ground velocity dX_g/dt"),
         **coordinates(q, t),
-        "rise": _var(t, q[:, 7] - geometry.Ry3_compatible(0.0), "m",
+        "rise": variable(t, q[:, 7] - geometry.Ry3_compatible(0.0), "m",
                      "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
     }
     I, gap = corner_diagnostics(q, geometry)
     for i, c in enumerate(CORNERS):
-        data[f"I_{c}"] = _var(t, I[:, i], "m", f"interpenetration at corner {c}2 (positive into the plate)")
+        data[f"I_{c}"] = variable(t, I[:, i], "m", f"interpenetration at corner {c}2 (positive into the plate)")
     for j, plate in enumerate(("1", "3")):
-        data[f"clearance_{plate}"] = _var(t, gap[:, j], "m",
+        data[f"clearance_{plate}"] = variable(t, gap[:, j], "m",
                                           f"clearance between the pad and the retaining ring of RB{plate}")
-    data["capacity_exceeded"] = _var(
+    data["capacity_exceeded"] = variable(
         t, (gap < 0).any(axis=-1).astype(np.int8), "1", "pad beyond a retaining ring",
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="within_capacity capacity_exceeded")
     last = " (its last phase)" if entry.stages else ""
-    data["newton_iterations"] = _var(t, history["newton_iterations"], "1",
+    data["newton_iterations"] = variable(t, history["newton_iterations"], "1",
                                      f"Newton-Raphson iterations of the step{last}")
-    data["newton_residual"] = _var(t, history["residual"], "m", f"final max |constraint residual|{last}")
+    data["newton_residual"] = variable(t, history["residual"], "m", f"final max |constraint residual|{last}")
     for suffix, when in entry.stages.items():
         data.update(coordinates(history["q" + suffix], t, suffix, when))
     data.update(_variables(entry.diagnostics(history, geometry), t))
@@ -138,16 +139,16 @@ def breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs=None) -
     q, q0 = history["q"][1], history["q"][0]
     d = ("dXg", "theta2_0")
     I = interpenetration(q, geometry)
-    data = {f"I_{c}": _var(d, I[..., i], "m", f"interpenetration at corner {c}2 after the first step")
+    data = {f"I_{c}": variable(d, I[..., i], "m", f"interpenetration at corner {c}2 after the first step")
             for i, c in enumerate(CORNERS)}
-    data["det_Cq"] = _var(d, models.determinant(history, geometry)[1], "m",
+    data["det_Cq"] = variable(d, models.determinant(history, geometry)[1], "m",
                           "determinant |C_q| (Eq. 29) of the first step")
-    data["newton_iterations"] = _var(d, history["newton_iterations"][1], "1", "Newton-Raphson iterations")
+    data["newton_iterations"] = variable(d, history["newton_iterations"][1], "1", "Newton-Raphson iterations")
     data.update(coordinates(q, d, "", " after the first step"))
     data.update(coordinates(q0, d, "_t0", " in the initial compatible configuration"))
     ds = xr.Dataset(data, coords={
-        "theta2_0": _var(("theta2_0",), np.degrees(theta2_0), "degree", "initial pad rotation theta2(t0)"),
-        "dXg": _var(("dXg",), sizes, "m", "imposed ground displacement of the first step")})
+        "theta2_0": variable(("theta2_0",), np.degrees(theta2_0), "degree", "initial pad rotation theta2(t0)"),
+        "dXg": variable(("dXg",), sizes, "m", "imposed ground displacement of the first step")})
     ds.attrs = global_attrs("DCCSS breakaway: interpenetration at the first compliant sliding step",
                             "breakaway sweep", model="compliant", normals=normals, **geometry_attrs(geometry),
                             **(attrs or {}))
@@ -156,7 +157,7 @@ def breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs=None) -
 
 def _vector(name, values, units, long_name, dims, suffix="", when=""):
     """Three variables name_x, name_y, name_z of a (T, 3) array."""
-    return {f"{name}_{axis}{suffix}": _var(dims, values[:, i], units, f"{long_name}, {axis} component{when}")
+    return {f"{name}_{axis}{suffix}": variable(dims, values[:, i], units, f"{long_name}, {axis} component{when}")
             for i, axis in enumerate("xyz")}
 
 
@@ -172,55 +173,55 @@ def spatial_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
     d = spatial.diagnostics(history, geometry)
     axis = history["Q"][:, :, 2]
     data = {
-        "Xg_x": _var(t, ground[:, 0], "m", "imposed ground displacement X_g, x component"),
-        "Xg_y": _var(t, ground[:, 1], "m", "imposed ground displacement X_g, y component"),
-        "Xg_dot_x": _var(t, velocity[:, 0], "m s-1", "imposed ground velocity, x component"),
-        "Xg_dot_y": _var(t, velocity[:, 1], "m s-1", "imposed ground velocity, y component"),
-        "tilt": _var(t, np.degrees(d["tilt"]), "degree", "tilt of the pad axis from the vertical"),
-        "tilt_azimuth": _var(t, np.degrees(d["tilt_azimuth"]), "degree",
+        "Xg_x": variable(t, ground[:, 0], "m", "imposed ground displacement X_g, x component"),
+        "Xg_y": variable(t, ground[:, 1], "m", "imposed ground displacement X_g, y component"),
+        "Xg_dot_x": variable(t, velocity[:, 0], "m s-1", "imposed ground velocity, x component"),
+        "Xg_dot_y": variable(t, velocity[:, 1], "m s-1", "imposed ground velocity, y component"),
+        "tilt": variable(t, np.degrees(d["tilt"]), "degree", "tilt of the pad axis from the vertical"),
+        "tilt_azimuth": variable(t, np.degrees(d["tilt_azimuth"]), "degree",
                              "azimuth the pad axis leans towards, from x towards y (NaN where the axis is vertical)"),
-        "rise": _var(t, d["rise"], "m", "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
+        "rise": variable(t, d["rise"], "m", "rise of RB3 above its theta2 = 0 rest position (Eq. 41)"),
         **_vector("G2", history["G"], "m", "centre of the pad RB2", t),
         **_vector("axis", axis, "1", "unit axis of the pad RB2 (up)", t),
         **_vector("R3", history["R3"], "m", "position of the upper plate RB3", t),
-        "step_azimuth": _var(t, np.degrees(np.arctan2(history["e1"][:, 1], history["e1"][:, 0])), "degree",
+        "step_azimuth": variable(t, np.degrees(np.arctan2(history["e1"][:, 1], history["e1"][:, 0])), "degree",
                              "azimuth of the ground increment of the step ending here (the plane pi of the step)"),
-        "gap_1": _var(t, d["gap_1"], "m", "distance between the lower cap centre C21 and the sphere centre C1"),
-        "gap_3": _var(t, d["gap_3"], "m", "distance between the upper cap centre C23 and the sphere centre C3"),
+        "gap_1": variable(t, d["gap_1"], "m", "distance between the lower cap centre C21 and the sphere centre C1"),
+        "gap_3": variable(t, d["gap_3"], "m", "distance between the upper cap centre C23 and the sphere centre C3"),
     }
     for i, name in enumerate(spatial.RIM_POINTS):
-        data[f"I_{name}"] = _var(t, d["interpenetration"][:, i], "m",
+        data[f"I_{name}"] = variable(t, d["interpenetration"][:, i], "m",
                                  f"interpenetration at the {name.replace('_', ' ')} rim point of the step's section "
                                  "(positive into the plate)")
     for plate in ("1", "3"):
-        data[f"clearance_{plate}"] = _var(t, d[f"clearance_{plate}"], "m",
+        data[f"clearance_{plate}"] = variable(t, d[f"clearance_{plate}"], "m",
                                           f"clearance between the pad and the retaining ring of RB{plate}")
     beyond = (d["clearance_1"] < 0) | (d["clearance_3"] < 0)
-    data["capacity_exceeded"] = _var(
+    data["capacity_exceeded"] = variable(
         t, beyond.astype(np.int8), "1", "pad beyond a retaining ring",
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="within_capacity capacity_exceeded")
     stages = "stick_G" in history
     last = " (its last phase)" if stages else ""
-    data["newton_iterations"] = _var(t, history["newton_iterations"], "1",
+    data["newton_iterations"] = variable(t, history["newton_iterations"], "1",
                                      f"Newton-Raphson iterations of the step{last}")
-    data["newton_residual"] = _var(t, history["residual"], "m", f"final max |constraint residual|{last}")
+    data["newton_residual"] = variable(t, history["residual"], "m", f"final max |constraint residual|{last}")
     if stages:
         when = " at the end of the sticking phase"
         s = spatial.diagnostics(history, geometry, prefix="stick_")
-        data["tilt_stick"] = _var(t, np.degrees(s["tilt"]), "degree", "tilt of the pad axis" + when)
-        data["tilt_azimuth_stick"] = _var(t, np.degrees(s["tilt_azimuth"]), "degree",
+        data["tilt_stick"] = variable(t, np.degrees(s["tilt"]), "degree", "tilt of the pad axis" + when)
+        data["tilt_azimuth_stick"] = variable(t, np.degrees(s["tilt_azimuth"]), "degree",
                                           "azimuth the pad axis leans towards" + when)
-        data["rise_stick"] = _var(t, s["rise"], "m", "rise of RB3" + when)
+        data["rise_stick"] = variable(t, s["rise"], "m", "rise of RB3" + when)
         data.update(_vector("G2", history["stick_G"], "m", "centre of the pad RB2", t, "_stick", when))
         data.update(_vector("axis", history["stick_Q"][:, :, 2], "1", "unit axis of the pad RB2", t, "_stick", when))
         turn = np.full(len(times), np.nan)
         for k in range(1, len(times)):  # the angle of the rotation of each sticking phase
             R = history["stick_Q"][k] @ history["Q"][k - 1].T
             turn[k] = np.degrees(np.arccos(np.clip(0.5 * (np.trace(R) - 1.0), -1.0, 1.0)))
-        data["sticking_rotation"] = _var(t, turn, "degree", "angle the pad turns through in the sticking phase")
-        data["newton_iterations_stick"] = _var(t, history["newton_iterations_stick"], "1",
+        data["sticking_rotation"] = variable(t, turn, "degree", "angle the pad turns through in the sticking phase")
+        data["newton_iterations_stick"] = variable(t, history["newton_iterations_stick"], "1",
                                                "Newton-Raphson iterations of the sticking phase")
-        data["newton_residual_stick"] = _var(t, history["residual_stick"], "m",
+        data["newton_residual_stick"] = variable(t, history["residual_stick"], "m",
                                              "final max |constraint residual| of the sticking phase")
     title = models.model(model).title
     ds = xr.Dataset(data, coords={TIME: time_coordinate(times)})

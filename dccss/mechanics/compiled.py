@@ -24,7 +24,7 @@ A run of batch shape S (the broadcast of the geometry fields, X_g[1:] and theta2
 flattened to N = prod(S) cases, indexed k, and the cases run in parallel (``prange``), each
 through all its steps. The inputs, per case (``_Batch``):
 
-* ``q0[k]`` (9,): the compatible start of ``models._start``;
+* ``q0[k]`` (9,): the compatible start of ``kinematics.start``;
 * ``pad[k]`` (4,) complex: the pad-frame positions u^2 of the corners A, B, C, D;
 * ``centre[k]`` (2,) complex, ``radius[k]`` (2,): the concave circles of RB1 and RB3 in their
   plate frames (C^1, R^1; C^3, R^3);
@@ -69,11 +69,11 @@ try:
 except ImportError as err:  # an optional dependency
     raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
 
-from . import models, newton
+from . import newton
 from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
-from .kinematics import CORNERS, NORMALS, RB3, all_corners
+from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
 from .newton import NewtonOptions
 
 # --- names ---------------------------------------------------------------------------------
@@ -710,13 +710,13 @@ class _Batch:
     """The flattened per-case inputs of a run and its status (see the module docstring)."""
 
     def __init__(self, geometry, Xg, theta2_0):
-        q0, _, _ = models._start(geometry, Xg, theta2_0)  # the reference's checks and start
+        q0, _, _ = start(geometry, Xg, theta2_0)  # the reference's checks and start
         self.shape = shape = q0.shape[:-1]
         self.one_case = not shape
         self.N = N = int(np.prod(shape, dtype=np.int64))
         Xg = np.asarray(Xg, dtype=float)
         T = self.T = Xg.shape[0]
-        Xg = Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:])  # as models._start
+        Xg = Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:])  # as kinematics.start
         if all(d == 1 for d in Xg.shape[1:]):  # one ground motion for all cases
             self.Xg = np.array(Xg.reshape(T, 1), dtype=float, order="C")
         else:
@@ -771,13 +771,13 @@ class _Batch:
             score = np.where(np.isnan(norms).any(axis=-1), np.inf, norms.max(axis=-1))
             k = int(tied[np.argmax(score)])
         cset = self._constraint_set(model, geometry, phase, n)
-        context = models._context(n, times, cset.phase)
+        context = newton.context(n, times, cset.phase)
         index = () if self.one_case else tuple(int(i) for i in np.unravel_index(k, self.shape))
         try:
             if status[first] == SINGULAR:
                 J = self.fail_J[k] if self.one_case else np.broadcast_to(self.fail_J[k], self.shape + (4, 4))
-                newton._singular(cset, J, context, index)
-            newton._not_converged(cset, self.fail_g[k], options, context, index)
+                newton.raise_singular(cset, J, context, index)
+            newton.raise_not_converged(cset, self.fail_g[k], options, context, index)
         except newton.ConvergenceError as err:
             if history is not None:
                 err.history = history
@@ -798,8 +798,8 @@ class _Batch:
 
 
 def _check(model, normals, options):
-    if model not in models.MODELS:
-        raise ValueError(f"model must be one of {models.MODELS}, got {model!r}")
+    if model not in HISTORY:
+        raise ValueError(f"model must be one of {tuple(HISTORY)}, got {model!r}")
     if normals not in NORMALS:
         raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
     if not isinstance(options, NewtonOptions):
@@ -946,13 +946,14 @@ def warm():
     """Compile (or load) the kernels of both models, planar and spatial, into the on-disk cache:
     e.g. once before parallel jobs that would each compile them (``python -m
     dccss.mechanics.compiled``)."""
-    from ..paper.prototypes import DFP1
     from . import spatial
 
-    for model in models.MODELS:
-        if model in HISTORY:
-            run(model, DFP1, np.array([0.0, 1e-3]))
-        spatial.run(model, DFP1, np.array([[0.0, 0.0], [1e-3, 0.0]]))
+    # any valid device compiles the same kernels
+    device = Geometry.from_degrees(R1=3.0, R3=3.0, alpha1=6.0, alpha3=6.0, h2=0.1, alpha21=2.0, alpha23=2.0, hr1=0.02,
+                                   hr3=0.02, hmin1=0.03, hmin3=0.03, tr1=0.03, tr3=0.03)
+    for model in HISTORY:
+        run(model, device, np.array([0.0, 1e-3]))
+        spatial.run(model, device, np.array([[0.0, 0.0], [1e-3, 0.0]]))
 
 
 if __name__ == "__main__":

@@ -164,3 +164,20 @@ def clearance(q, geometry):
     R^j sin(alpha^j) - max |x| of the plate's two corners in the plate frame. Negative when the
     pad has passed the ring: the device capacity is exceeded."""
     return corner_diagnostics(q, geometry)[1]
+
+
+def start(geometry, Xg, theta2_0):
+    """The compatible start of a run at theta^2(t_0) with RB1 at X_g[0] (``geometry.compatible``),
+    X_g broadcast to (T, batch...) and R_x^3 (RB3's guided abscissa); one case as Python scalars."""
+    Xg = np.asarray(Xg, dtype=float)
+    if Xg.ndim < 1 or Xg.shape[0] < 2:
+        raise ValueError(f"Xg must hold at least two step values along its first axis, got shape {Xg.shape}")
+    q0 = geometry.compatible(theta2_0, Xg[0])
+    shape = np.broadcast_shapes(q0.shape[:-1], Xg.shape[1:])
+    T = Xg.shape[0]
+    Xg = np.broadcast_to(Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:]), (T,) + shape)
+    q0 = np.broadcast_to(q0, shape + (9,))
+    # one case runs on Python scalars (fast); a batch on arrays
+    if not shape:
+        return q0, Xg.tolist(), float(q0[RB3])
+    return q0, Xg, q0[..., RB3]

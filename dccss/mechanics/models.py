@@ -41,6 +41,7 @@ from .kinematics import (
     frames,
     interpenetration,
     local,
+    start,
 )
 
 
@@ -75,21 +76,6 @@ class StickSlipStep(Step):
     residual_stick: object
 
 
-def _start(geometry, Xg, theta2_0):
-    Xg = np.asarray(Xg, dtype=float)
-    if Xg.ndim < 1 or Xg.shape[0] < 2:
-        raise ValueError(f"Xg must hold at least two step values along its first axis, got shape {Xg.shape}")
-    q0 = geometry.compatible(theta2_0, Xg[0])
-    shape = np.broadcast_shapes(q0.shape[:-1], Xg.shape[1:])
-    T = Xg.shape[0]
-    Xg = np.broadcast_to(Xg.reshape((T,) + (1,) * (len(shape) + 1 - Xg.ndim) + Xg.shape[1:]), (T,) + shape)
-    q0 = np.broadcast_to(q0, shape + (9,))
-    # one case runs on Python scalars (fast); a batch on arrays
-    if not shape:
-        return q0, Xg.tolist(), float(q0[RB3])
-    return q0, Xg, q0[..., RB3]
-
-
 def _wrapped(q):
     """q with theta2 in (-pi, pi]: Newton may land on theta2 + 2 pi k, the same configuration."""
     theta2 = q[..., 5]
@@ -110,20 +96,13 @@ def _extrapolate(history):
     return sum(w * q for w, q in zip(_PREDICTOR[len(history)], history))
 
 
-def _context(n, times, phase):
-    ctx = {"step": n, "phase": phase}
-    if times is not None:
-        ctx["time"] = float(times[n])
-    return ctx
-
-
 def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
                     times=None):
     """Yield, for n = 0..T-1, {"n", "q", "local", "point", "normal", "newton_iterations",
     "residual"}: the configuration at t_n, the plate-frame positions of A..D there, and the
     contact data (plate-frame points and normals of A..D, complex) of the step that ends there;
     at n = 0 those of q(t_0) itself (for |C_q| at rest)."""
-    q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
+    q, Xg, Rx3 = start(geometry, Xg, theta2_0)
     corners = all_corners(geometry)
     F = frames(q)
     locals_ = tuple(local(F, c) for c in corners)
@@ -132,7 +111,7 @@ def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=new
     history = [q]  # the last converged configurations, newest last, for the predictor
     for n in range(1, len(Xg)):
         cset = Compliant(corners, Xg[n], Rx3, points, normals_)
-        result = newton.solve(cset, _extrapolate(history), options, _context(n, times, cset.phase))
+        result = newton.solve(cset, _extrapolate(history), options, newton.context(n, times, cset.phase))
         q = _wrapped(result.q)
         history = history[-3:] + [q]
         F = frames(q)  # the next step's contact data
@@ -162,7 +141,7 @@ def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=ne
     """Yield, for n = 0..T-1, {"n", "q", "q_stick", "diagonal_BC", "newton_iterations(_stick)",
     "residual(_stick)"}: the configuration at t_n (end of slipping) and at the end of the
     sticking phase of the step ending there (NaN at n = 0); diagonal_BC is True where B-C jammed."""
-    q, Xg, Rx3 = _start(geometry, Xg, theta2_0)
+    q, Xg, Rx3 = start(geometry, Xg, theta2_0)
     batch = np.ndim(Xg) > 1
     fixed = {False: diagonal(geometry, False), True: diagonal(geometry, True)}
     yield StickSlipStep(0, q, 0, 0.0, np.full_like(q, np.nan), np.zeros(np.shape(q)[:-1], bool), 0, 0.0)
@@ -179,13 +158,13 @@ def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=ne
             same = (previous[2] == down)[..., None] if batch else previous[2] == down
             stick_guess = np.where(same, q + previous[1] - previous[0], q) if batch else (
                 q + previous[1] - previous[0] if same else q)
-        r1 = newton.solve(stick, stick_guess, options, _context(n, times, stick.phase))
+        r1 = newton.solve(stick, stick_guess, options, newton.context(n, times, stick.phase))
         q_stick = _wrapped(r1.q)
         slip = slip_set(geometry, corners, q_stick, normals)
         slip_guess = q_stick if previous is None else (
             np.where(same, q_stick + q - previous[1], q_stick) if batch else
             (q_stick + q - previous[1] if same else q_stick))
-        r2 = newton.solve(slip, slip_guess, options, _context(n, times, slip.phase))
+        r2 = newton.solve(slip, slip_guess, options, newton.context(n, times, slip.phase))
         previous = (q, q_stick, down)
         q = _wrapped(r2.q)
         yield StickSlipStep(n, q, r2.iterations, r2.residual, q_stick, down, r1.iterations, r1.residual)

@@ -103,12 +103,12 @@ def _solve_one(cset, q, options, context):
         try:
             dq = np.linalg.solve(J, g)
         except np.linalg.LinAlgError:
-            _singular(cset, J, context, ())
+            raise_singular(cset, J, context, ())
         for c, d in zip(free, dq.tolist()):
             x[c] -= d
     if options.on_failure == "mark":
         return NewtonResult(np.full(9, np.nan), it, float("nan"), True)
-    _not_converged(cset, np.array(g), options, context, ())
+    raise_not_converged(cset, np.array(g), options, context, ())
 
 
 def _solve_batch(cset, q, options, context):
@@ -132,7 +132,7 @@ def _solve_batch(cset, q, options, context):
         except np.linalg.LinAlgError:
             singular = _singular_cases(J, active)
             if not mark:
-                _singular(cset, J, context, tuple(int(i) for i in np.argwhere(singular)[0]))
+                raise_singular(cset, J, context, tuple(int(i) for i in np.argwhere(singular)[0]))
             failed |= singular
             q[singular] = np.nan
             active &= ~singular
@@ -146,7 +146,7 @@ def _solve_batch(cset, q, options, context):
         return NewtonResult(q, iterations, norm, failed | active)
     score = np.where(active, np.where(np.isnan(norm), np.inf, norm), -np.inf)
     index = tuple(int(i) for i in np.unravel_index(np.argmax(score), score.shape))
-    _not_converged(cset, g[index], options, context, index)
+    raise_not_converged(cset, g[index], options, context, index)
 
 
 def _singular_cases(J, active):
@@ -160,6 +160,14 @@ def _singular_cases(J, active):
     return singular
 
 
+def context(n, times, phase):
+    """The context of an error at step n (its time, if ``times`` is given) in ``phase``."""
+    ctx = {"step": n, "phase": phase}
+    if times is not None:
+        ctx["time"] = float(times[n])
+    return ctx
+
+
 def _where(context, index) -> str:
     ctx = dict(context or {})
     parts = [f"batch index {index}"] if index else []
@@ -169,7 +177,7 @@ def _where(context, index) -> str:
     return ", ".join(parts)
 
 
-def _singular(cset, J, context, index):
+def raise_singular(cset, J, context, index):
     raise SingularJacobianError(
         f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
         f"|C_q| = {float(np.linalg.det(J[index])):.3e}. The constraints do not fix the free "
@@ -181,7 +189,7 @@ def _singular(cset, J, context, index):
 STALLED = 100.0
 
 
-def _not_converged(cset, g, options, context, index):
+def raise_not_converged(cset, g, options, context, index):
     a = np.where(np.isnan(g), np.inf, np.abs(g))
     row = int(np.argmax(a))
     residual = float(a[row])

@@ -27,22 +27,22 @@ from matplotlib.ticker import MaxNLocator
 from ..drawing import (
     CORNER_STYLE,
     I_LABEL,
-    _corner_inset,
-    _corners,
-    _device,
-    _drop_unused,
-    _figure,
-    _frame,
-    _grid,
-    _headroom,
-    _legend,
-    _length_unit,
-    _q,
-    _shapes,
-    _step_path,
-    _twin,
+    body_shapes,
     caption_line,
+    configuration_of,
+    corner_inset,
+    draw_device,
+    drop_unused,
+    frame_points,
     freeze,
+    grid_shape,
+    headroom,
+    legend_on,
+    length_unit,
+    new_figure,
+    plot_corners,
+    step_path,
+    twin_axis,
 )
 from ..mechanics.kinematics import CORNERS
 from ..results import geometry_from_attrs
@@ -78,45 +78,45 @@ def _sweep(ds, panel):
 def _breakaway(spec, datasets, caption):
     """Fig. 7: corner interpenetration and |C_q| after the first step vs θ²(t₀); panels fill the
     columns of a two-row grid."""
-    nrows, ncols = _grid(len(spec.panels), rows=2)
-    fig, axes = _figure((13, 4.5 * nrows), nrows, ncols)
+    nrows, ncols = grid_shape(len(spec.panels), rows=2)
+    fig, axes = new_figure((13, 4.5 * nrows), nrows, ncols)
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         ds, ax = _sweep(ds, panel), axes[k % nrows, k // nrows]
         th = ds["theta2_0"].values
-        factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
+        factor, unit = length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
         for c in CORNERS:
             ax.plot(th, factor * ds[f"I_{c}"].values, label=I_LABEL[c], **CORNER_STYLE[c])
         ax.set_ylabel(f"interpenetration ({unit})")
         ax.set_xlabel(r"$\theta^2(t_0)$ (°)")
-        tw = _twin(ax, "0.3", r"$|\mathbf{C_q}|$ (m)")
+        tw = twin_axis(ax, "0.3", r"$|\mathbf{C_q}|$ (m)")
         tw.plot(th, ds["det_Cq"].values, color="0.3", ls=":", lw=1.4, marker=".", ms=4, label=r"$|\mathbf{C_q}|$")
         ax.set_title(f"({ascii_lowercase[k]}) {_sweep_label(panel)}, ΔX$_g(t_1)$ = {100 * panel.dXg:g} cm", loc="left")
         ax.margins(y=0.15)
-        _headroom(ax, tw)  # keep the legend clear of both curves
-        _legend(ax, tw, ncols=5, loc="upper center")
-    _drop_unused(axes, len(spec.panels), by_columns=True)
+        headroom(ax, tw)  # keep the legend clear of both curves
+        legend_on(ax, tw, ncols=5, loc="upper center")
+    drop_unused(axes, len(spec.panels), by_columns=True)
     return _finish(fig, spec.id, caption, spec.title)
 
 
 def _breakaway_configurations(spec, datasets, caption):
     """Fig. 8: initial and displaced configurations at the sweep point nearest each panel's θ²(t₀),
     with the four corners zoomed; panels side by side."""
-    fig, axes = _figure((13, 7.6), 1, len(spec.panels))
+    fig, axes = new_figure((13, 7.6), 1, len(spec.panels))
     places = {"A": [0.01, 0.01, 0.40, 0.27], "B": [0.59, 0.01, 0.40, 0.27],
               "C": [0.01, 0.70, 0.40, 0.27], "D": [0.59, 0.70, 0.40, 0.27]}
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         ds, ax = _sweep(ds, panel).sel(theta2_0=panel.theta2_0, method="nearest"), axes[0, k]
         g = geometry_from_attrs(ds.attrs)
-        shapes = _shapes(g)
-        q0, q1 = _q(ds, "_t0"), _q(ds)
-        points = _device(ax, g, q1, shapes, corners=True, label="displaced, $t_1$")
-        points = np.vstack([points, _device(ax, g, q0, shapes, fill=False, colour="0.35", ls="--",
+        shapes = body_shapes(g)
+        q0, q1 = configuration_of(ds, "_t0"), configuration_of(ds)
+        points = draw_device(ax, g, q1, shapes, corners=True, label="displaced, $t_1$")
+        points = np.vstack([points, draw_device(ax, g, q0, shapes, fill=False, colour="0.35", ls="--",
                                             label="initial, $t_0$")])
-        _frame(ax, points, extra_y=(30, 30))
+        frame_points(ax, points, extra_y=(30, 30))
         values = {c: float(ds[f"I_{c}"]) for c in CORNERS}
         loaded = "BC" if values["B"] + values["C"] > values["A"] + values["D"] else "AD"
         for c in CORNERS:
-            _corner_inset(ax, g, q1, shapes, c, values[c], places[c], c in loaded)
+            corner_inset(ax, g, q1, shapes, c, values[c], places[c], c in loaded)
         ax.set_title(f"({ascii_lowercase[k]}) {_sweep_label(panel)}, $\\theta^2(t_0)$ = "
                      f"{float(ds['theta2_0']):.1f}°, ΔX$_g(t_1)$ = {100 * panel.dXg:g} cm, "
                      f"$\\theta^2(t_1)$ = {q1['theta2']:.2f}°", loc="left")
@@ -126,12 +126,12 @@ def _breakaway_configurations(spec, datasets, caption):
 
 def _diagonals(spec, datasets, caption):
     """Fig. 9: interpenetration histories on diagonal A²D² (top) and B²C² (bottom), a column per panel."""
-    fig, axes = _figure((14, 7.5), 2, len(spec.panels), sharex=True)
+    fig, axes = new_figure((14, 7.5), 2, len(spec.panels), sharex=True)
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         t = ds["t"].values
-        factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
+        factor, unit = length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
         for row, pair in enumerate(("AD", "BC")):
-            _corners(axes[row, k], t, ds, pair, factor, unit,
+            plot_corners(axes[row, k], t, ds, pair, factor, unit,
                      f"diagonal ${pair[0]}^2{pair[1]}^2$\ninterpenetration, < 0: gap")
         axes[0, k].set_title(f"({ascii_lowercase[k]}) {_case_label(panel)}", loc="left")
         axes[1, k].set_xlabel("t (s)")
@@ -141,7 +141,7 @@ def _diagonals(spec, datasets, caption):
 def _differences(spec, datasets, caption):
     """Fig. 10: I_A − I_B (top) and I_D − I_C (bottom), corners sliding on the same surface; a column
     per panel."""
-    fig, axes = _figure((12, 7), 2, len(spec.panels), sharex=True)
+    fig, axes = new_figure((12, 7), 2, len(spec.panels), sharex=True)
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         t = ds["t"].values
         for row, (a, b) in enumerate((("A", "B"), ("D", "C"))):
@@ -150,7 +150,7 @@ def _differences(spec, datasets, caption):
             ax.axhline(0, color="0.6", lw=0.6)
             ax.set_ylabel(f"{I_LABEL[a]} − {I_LABEL[b]} (µm)")
             ax.ticklabel_format(axis="y", style="plain", useOffset=False)
-            _headroom(ax)
+            headroom(ax)
             ax.legend(fontsize=8, loc="upper right")
             _cyclic_inset(ax, t, diff, CORNER_STYLE[a]["color"])
         axes[0, k].set_title(f"({ascii_lowercase[k]}) {_case_label(panel)}", loc="left")
@@ -174,36 +174,36 @@ def _global_coordinates(spec, datasets, caption):
     """Figs. 11, 12: X_g, dX_g/dt; theta2, rise; initial and final configurations (one panel)."""
     panel, ds = spec.panels[0], datasets[0]
     g = geometry_from_attrs(ds.attrs)
-    shapes = _shapes(g)
+    shapes = body_shapes(g)
     t = ds["t"].values
-    fig, axes = _figure((13, 8.6), 2, 2, height_ratios=(1, 0.95))
+    fig, axes = new_figure((13, 8.6), 2, 2, height_ratios=(1, 0.95))
     ax = axes[0, 0]
     ax.plot(t, 100 * ds["Xg"].values, color="k", lw=1.6, label="$X_g$")
     ax.set_ylabel("$X_g$ (cm)")
-    tw = _twin(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
+    tw = twin_axis(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
     tw.plot(t, 100 * ds["Xg_dot"].values, color="tab:purple", ls="--", lw=1.2, label=r"$\dot X_g$")
-    _headroom(ax, tw)
-    _legend(ax, tw, loc="upper center", ncols=2)
+    headroom(ax, tw)
+    legend_on(ax, tw, loc="upper center", ncols=2)
     ax.set_title(f"(a) imposed ground motion, {_case_label(panel)}", loc="left")
     ax = axes[0, 1]
     ax.plot(t, ds["theta2"].values, color="tab:blue", lw=1.6, label=r"$\theta^2$")
     ax.set_ylabel(r"$\theta^2$ (°)", color="tab:blue")
-    tw = _twin(ax, "tab:brown", r"$R_y^3$ rise above rest (cm)")
+    tw = twin_axis(ax, "tab:brown", r"$R_y^3$ rise above rest (cm)")
     tw.plot(t, 100 * ds["rise"].values, color="tab:brown", ls="--", lw=1.4, label=r"$R_y^3$ rise")
-    _headroom(ax, tw)
-    _legend(ax, tw, loc="upper center", ncols=2)
+    headroom(ax, tw)
+    legend_on(ax, tw, loc="upper center", ncols=2)
     ax.set_title("(b) pad rotation and upper-plate rise", loc="left")
     for ax in axes[0]:
         ax.set_xlabel("t (s)")
     points = []
     for k, (n, name) in enumerate(((0, "initial"), (-1, "final"))):
-        ax, q = axes[1, k], _q(ds.isel(t=n))
-        points.append(_device(ax, g, q, shapes, corners=True))
+        ax, q = axes[1, k], configuration_of(ds.isel(t=n))
+        points.append(draw_device(ax, g, q, shapes, corners=True))
         ax.set_title(f"({'cd'[k]}) {name} configuration, t = {t[n]:.2f} s: $X_g$ = {100 * q['Rx1']:.1f} cm, "
                      f"$\\theta^2$ = {q['theta2']:.2f}°, rise = {100 * float(ds['rise'][n]):.2f} cm",
                      loc="left", fontsize=10)
     for ax in axes[1]:  # same limits: both drawings at the same scale
-        _frame(ax, np.vstack(points))
+        frame_points(ax, np.vstack(points))
     return _finish(fig, spec.id, caption, spec.title)
 
 
@@ -211,18 +211,18 @@ def _interpenetration(spec, datasets, caption):
     """Fig. 17: interpenetration histories at the four corners; panels fill the rows of a
     two-column grid."""
     n = len(spec.panels)
-    nrows, ncols = _grid(n, cols=2)
-    fig, axes = _figure((13, 4.25 * nrows), nrows, ncols, sharex=True)
+    nrows, ncols = grid_shape(n, cols=2)
+    fig, axes = new_figure((13, 4.25 * nrows), nrows, ncols, sharex=True)
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         ax = axes[k // ncols, k % ncols]
-        factor, unit = _length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
-        _corners(ax, ds["t"].values, ds, CORNERS, factor, unit)
+        factor, unit = length_unit(*(ds[f"I_{c}"].values for c in CORNERS))
+        plot_corners(ax, ds["t"].values, ds, CORNERS, factor, unit)
         ax.set_title(f"({ascii_lowercase[k]}) {_case_label(panel)}", loc="left")
     for k in range(max(0, n - ncols), n):  # the lowest panel of each column
         axes[k // ncols, k % ncols].set_xlabel("t (s)")
         if k // ncols < nrows - 1:
             axes[k // ncols, k % ncols].xaxis.set_tick_params(labelbottom=True)
-    _drop_unused(axes, n)
+    drop_unused(axes, n)
     return _finish(fig, spec.id, caption, spec.title)
 
 
@@ -237,10 +237,10 @@ def _sticking(spec, datasets, caption):
               "rise": (100 * ds["rise"].values, 100 * (ds["Ry3_stick"].values - rest), r"$R_y^3$ rise (cm)")}
     n = max(1, int(np.abs(t - panel.t).argmin()))
     half = 6.5 * (t[n] - t[n - 1])
-    fig = _figure((13, 10), None)
+    fig = new_figure((13, 10), None)
     axd = fig.subplot_mosaic([["a", "b"], ["c", "d"], ["e", "e"]], width_ratios=(2.6, 1))
     for (main, zoom), (end, stick, label) in zip((("a", "b"), ("c", "d")), series.values()):
-        tt, vv = _step_path(t, end, stick)
+        tt, vv = step_path(t, end, stick)
         for ax in (axd[main], axd[zoom]):
             ax.plot(tt, vv, color="tab:red", lw=0.6, alpha=0.6, label="path through the end of sticking")
             ax.plot(t, end, color="k", lw=1.5, label="end of step")
@@ -264,9 +264,9 @@ def _sticking(spec, datasets, caption):
     ax.plot(mid, stick_rotation, color="tab:red", lw=1.2, label=r"$\theta^2_{stick}(t_n) - \theta^2(t_{n-1})$")
     ax.set_ylabel(r"$\Delta\theta^2$ in sticking (°)", color="tab:red")
     ax.set_xlabel("t (s)")
-    tw = _twin(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
+    tw = twin_axis(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
     tw.plot(t, 100 * ds["Xg_dot"].values, color="tab:purple", ls="--", lw=1.0, label=r"$\dot X_g$")
-    _legend(ax, tw, loc="lower right", bbox_to_anchor=(1, 1), ncols=2, borderaxespad=0.2)
+    legend_on(ax, tw, loc="lower right", bbox_to_anchor=(1, 1), ncols=2, borderaxespad=0.2)
     ax.set_title(f"(e) sticking rotation of the pad (max |Δθ²| = {np.nanmax(np.abs(stick_rotation)):.2f}°) "
                  "and ground velocity", loc="left")
     return _finish(fig, spec.id, caption, spec.title)
@@ -275,22 +275,23 @@ def _sticking(spec, datasets, caption):
 def _two_phase(spec, datasets, caption):
     """Fig. 20: configurations at the start of the step ending nearest each panel's t, at the end of
     its sticking phase and at the end of its slipping phase; stick-slip panels side by side."""
-    fig, axes = _figure((13, 5.9), 1, len(spec.panels))
+    fig, axes = new_figure((13, 5.9), 1, len(spec.panels))
     styles = (("0.45", "--"), ("tab:red", "-"), ("tab:blue", "-."))
     for k, (panel, ds) in enumerate(zip(spec.panels, datasets)):
         ax = axes[0, k]
         g = geometry_from_attrs(ds.attrs)
-        shapes = _shapes(g)
+        shapes = body_shapes(g)
         n = max(1, int(np.abs(ds["t"].values - panel.t).argmin()))
         now = ds.isel(t=n)
-        configs = ((_q(ds.isel(t=n - 1)), "(1) start of step"), (_q(now, "_stick"), "(2) end of sticking"),
-                   (_q(now), "(3) end of slipping"))
+        configs = ((configuration_of(ds.isel(t=n - 1)), "(1) start of step"),
+                   (configuration_of(now, "_stick"), "(2) end of sticking"),
+                   (configuration_of(now), "(3) end of slipping"))
         points = []
         for (q, name), (colour, ls) in zip(configs, styles):
             label = f"{name}: $\\theta^2$ = {q['theta2']:.2f}°"
-            points.append(_device(ax, g, q, shapes, fill=False, colour=colour, ls=ls, label=label, lw=1.1,
+            points.append(draw_device(ax, g, q, shapes, fill=False, colour=colour, ls=ls, label=label, lw=1.1,
                                   corners=name.startswith("(2)")))
-        _frame(ax, np.vstack(points))
+        frame_points(ax, np.vstack(points))
         diagonal = ("$A^2D^2$", "$B^2C^2$")[int(now["sticking_diagonal"])]
         ax.set_title(f"({ascii_lowercase[k]}) {_case_label(panel)}, step ending at t = {float(now['t']):.3f} s,\n"
                      f"$\\dot X_g$ = {100 * float(now['Xg_dot']):.2f} cm/s, sticking diagonal {diagonal}", loc="left")

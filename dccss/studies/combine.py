@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 
 from ..mechanics.models import REGISTRY
-from ..results import _var, global_attrs
+from ..results import global_attrs, variable
 from .sweep import MODEL_SPECIFIC, SUMMARIES
 
 
@@ -17,7 +17,7 @@ def axis_variable(dims, name, values):
     units = axis_units(name)
     if units is None:
         return xr.Variable(dims, np.asarray(values, dtype=object), {"long_name": f"sweep axis {name}"})
-    return _var(dims, values, units, f"sweep axis {name}")
+    return variable(dims, values, units, f"sweep axis {name}")
 
 
 def study_attrs(study, model=None) -> dict:

@@ -26,7 +26,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 
-from ..drawing import _figure, caption_line, freeze
+from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
 from ..results import MODEL_TITLES
 from .sweep import MODEL_SPECIFIC
@@ -171,7 +171,7 @@ def histories(points: list, caption: str) -> Figure:
     models = _ordered({m for _, runs in points for m in runs})
     rows, ncols = len(HISTORY_ROWS), min(len(points), POINTS_PER_ROW)
     blocks = -(-len(points) // POINTS_PER_ROW)
-    fig, axs = _figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks), rows * blocks, ncols)
+    fig, axs = new_figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks), rows * blocks, ncols)
     events = set()
     for k, (label, runs) in enumerate(points):
         block, c = divmod(k, POINTS_PER_ROW)
@@ -346,11 +346,11 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     models = _ordered([str(m) for m in ds["model"].values])
     variables = [v for v in SUMMARY_VARIABLES if v[0] in ds and any(_defined(ds, v[0], m) for m in models)]
     if kind == "map":
-        fig, axs = _figure((4.2 * len(variables) + 0.6, 3.5 * len(models) + 1.6), len(models), len(variables))
+        fig, axs = new_figure((4.2 * len(variables) + 0.6, 3.5 * len(models) + 1.6), len(models), len(variables))
         legend = _draw_maps(fig, axs, ds, drawn, marks, variables, models)
         what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}"
     else:
-        fig, axs = _figure((4.1 * len(variables), 5.0), 1, len(variables))
+        fig, axs = new_figure((4.1 * len(variables), 5.0), 1, len(variables))
         draw = _draw_lines if kind == "lines" else _draw_categories
         legend = draw(axs[0], ds, drawn, marks, variables, models)
         what = f"summaries against {_symbol(drawn[0])}" + (f" per {_symbol(drawn[1])}" if len(drawn) > 1 else "")
@@ -666,7 +666,7 @@ CONVERGENCE_PANELS = [
 def convergence(rows, caption: str) -> Figure:
     """Log-log panels of ``convergence_table`` rows against Δt, one line per device, with the order
     fitted over the ``FIT_POINTS`` smallest steps in the legend; failed runs drawn hollow."""
-    fig, axs = _figure((13, 4.6), 1, len(CONVERGENCE_PANELS))
+    fig, axs = new_figure((13, 4.6), 1, len(CONVERGENCE_PANELS))
     groups = list(dict.fromkeys(r["group"] for r in rows))
     for ax, (name, label, factor, unit) in zip(axs[0], CONVERGENCE_PANELS):
         for k, group in enumerate(groups):

@@ -11,7 +11,7 @@ from ..mechanics import spatial
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
-from ..results import _var
+from ..results import variable
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
 from .sweep import SUMMARIES, summarize
@@ -44,12 +44,12 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
         for name, values in part.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
-    data = {name: _var(("case",), v, *SUMMARIES[name]) for name, v in out.items()}
+    data = {name: variable(("case",), v, *SUMMARIES[name]) for name, v in out.items()}
     for flag in ("capacity_exceeded", "failed"):
         data[flag].data = data[flag].data.astype(np.int8)
     for name, v in grid.values(cases).items():
         data[name] = axis_variable(("case",), name, v)
-    ds = xr.Dataset(data, coords={"case": _var(("case",), cases, "1", "flattened sweep index")})
+    ds = xr.Dataset(data, coords={"case": variable(("case",), cases, "1", "flattened sweep index")})
     ds.attrs = study_attrs(study, model)
     return ds
 
