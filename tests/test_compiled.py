@@ -11,8 +11,8 @@ import re
 import numpy as np
 import pytest
 
-pytest.importorskip("numba")
-pytestmark = pytest.mark.slow  # every test compiles the kernels (about 30 s with an empty cache)
+# in the quick loop (``-m "not slow"``) so that a broken kernel is caught there: a few seconds with the
+# kernel cache warm; the first run on a machine compiles the kernels (about 30 s, once)
 
 from test_properties import random_device, small_motion  # noqa: E402
 
