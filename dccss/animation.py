@@ -38,6 +38,7 @@ import numpy as np
 from .files import write_atomic
 from .mechanics.constraints import Q_NAMES
 from .mechanics.kinematics import CORNERS, interpenetration
+from .mechanics.models import REGISTRY
 from .results import MODEL_TITLES, geometry_from_attrs
 from .viewer import DPI, FIGSIZE, AnimationError, is_real, open_result, run_command, run_notes  # noqa: F401
 
@@ -216,7 +217,7 @@ class Scene:
         self.t = ds["t"].values.astype(float)
         self.steps = ds["step"].values if "step" in ds.coords else np.arange(self.t.size)
         self.q = _config(ds)
-        self.stick = ds.attrs["model"] == "stick_slip" and all(f"{k}_stick" in ds for k in Q_NAMES)
+        self.stick = REGISTRY[ds.attrs["model"]].sticking and all(f"{k}_stick" in ds for k in Q_NAMES)
         self.qs = _config(ds, "_stick") if self.stick else None
         self.diag = ds["sticking_diagonal"].values if self.stick and "sticking_diagonal" in ds else None
         self.I = _interpenetration(ds, self.g, self.q)

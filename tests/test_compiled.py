@@ -3,24 +3,23 @@
 Same keys, dtypes and shapes; lengths (m) and angles (rad; degrees in summaries) to 1e-10;
 Newton iteration counts, flags, failures and capacity times identical; the same errors. On the
 devices of the property tests (symmetric and not), both models, both normal conventions, one
-case and batches, histories and summaries."""
+case and batches, histories and summaries.
+
+In the quick loop (``-m "not slow"``) so that a broken kernel is caught there: a few seconds with
+the kernel cache warm; the first run on a machine compiles the kernels (about 30 s, once)."""
 
 import inspect
 import re
 
 import numpy as np
 import pytest
+from test_properties import random_device, small_motion
 
-# in the quick loop (``-m "not slow"``) so that a broken kernel is caught there: a few seconds with the
-# kernel cache warm; the first run on a machine compiles the kernels (about 30 s, once)
-
-from test_properties import random_device, small_motion  # noqa: E402
-
-from dccss.mechanics import compiled, models, newton  # noqa: E402
-from dccss.mechanics.geometry import Geometry  # noqa: E402
-from dccss.mechanics.kinematics import all_corners, frames, local  # noqa: E402
-from dccss.paper.prototypes import TABLE1  # noqa: E402
-from dccss.studies import sweep  # noqa: E402
+from dccss.mechanics import compiled, models, newton
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.kinematics import all_corners, frames, local
+from dccss.paper.prototypes import TABLE1
+from dccss.studies import sweep
 
 TOL = 1e-10
 

@@ -24,7 +24,7 @@ this module branches on a model's name; adding a model is adding an entry.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -248,6 +248,7 @@ class Model:
     summaries : {name: (units, long_name)} of the sweep summaries only this model has, computed
         per step by ``summary(step, previous_theta2_deg, rise_of)`` and reduced by their max.
     iteration_fields : the step fields that count Newton iterations (summed per step).
+    line, marker : how plots draw it (matplotlib line and marker properties; empty: a spare style).
     """
 
     name: str
@@ -259,17 +260,27 @@ class Model:
     summaries: dict
     summary: Callable | None
     iteration_fields: tuple
+    line: dict = field(default_factory=dict)
+    marker: dict = field(default_factory=dict)
+
+    @property
+    def sticking(self) -> bool:
+        """Whether its steps have a sticking phase (and store its end, ``stages``)."""
+        return bool(self.stages)
 
 
 REGISTRY = {m.name: m for m in (
+    # compliant sliding drawn wide and solid underneath, stick-slip narrow and dashed on top
     Model("compliant", "Compliant Sliding", compliant_steps, CompliantStep, _compliant_diagnostics, {}, {}, None,
-          ("newton_iterations",)),
+          ("newton_iterations",), line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
+          marker=dict(marker="o", ms=8, mfc="none", mew=1.8)),
     Model("stick_slip", "Stick-Slip", stick_slip_steps, StickSlipStep, _stick_slip_diagnostics,
           {"_stick": " at the end of the sticking phase"},
           {"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
                                                "|theta2_stick - theta2(t_n-1)|"),
            "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
-          _stick_slip_summary, ("newton_iterations", "newton_iterations_stick")),
+          _stick_slip_summary, ("newton_iterations", "newton_iterations_stick"),
+          line=dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3), marker=dict(marker="D", ms=4.5, mew=0.8)),
 )}
 MODELS = tuple(REGISTRY)
 

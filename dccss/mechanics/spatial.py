@@ -60,10 +60,10 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from .models import REGISTRY
 from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
 
 Z = (0.0, 0.0, 1.0)
-SPATIAL_MODELS = ("compliant", "stick_slip")
 #: the section's rim points, in the order of the step's rows: lower trailing, lower leading,
 #: upper trailing, upper leading (the planar A, B, C, D for a positive increment along +x)
 RIM_POINTS = ("lower_trailing", "lower_leading", "upper_trailing", "upper_leading")
@@ -686,7 +686,9 @@ def stick_slip_history(dev, Xg, pose, reference, in_plane, tol, max_iter, stop_a
                     planes, solver, failure)
 
 
+#: the compiled history of each model of the registry (``models.REGISTRY``) that runs in space
 STEPPERS = {"compliant": compliant_history, "stick_slip": stick_slip_history}
+SPATIAL_MODELS = tuple(STEPPERS)
 #: the per-step quantities of a history, by column of the ``_store`` rows: name -> (columns, shape)
 COLUMNS = {"R1": (slice(0, 3), (3,)), "G": (slice(3, 6), (3,)), "Q": (slice(6, 15), (3, 3)),
            "R3": (slice(15, 18), (3,)), "interpenetration": (slice(18, 22), (4,)),
@@ -742,7 +744,7 @@ def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(
     history["e1"], history["m"] = planes[:done, :3], planes[:done, 3:]
     history["newton_iterations"] = solver[:done, 2].astype(np.int64)
     history["residual"] = solver[:done, 3]
-    if name == "stick_slip":
+    if REGISTRY[name].sticking:
         history.update(_unpack(sticks[:done], "stick_"))
         history["newton_iterations_stick"] = solver[:done, 0].astype(np.int64)
         history["residual_stick"] = solver[:done, 1]
@@ -827,6 +829,8 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
     ``sticking_rotation_max`` is the largest angle the pad turns through in a sticking phase."""
     from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
 
+    if model not in STEPPERS:
+        raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {model!r}")
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     Xg = np.asarray(Xg, dtype=float)
@@ -836,9 +840,9 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
     now = np.asarray(times, dtype=float) if times is not None else np.arange(T, dtype=float)
     theta2_0 = np.broadcast_to(np.asarray(theta2_0, dtype=float), (n,))
     azimuth = np.broadcast_to(np.asarray(azimuth, dtype=float), (n,))
+    sticking = REGISTRY[model].sticking
     keys = ["theta2_max_abs", "theta2_end", "rise_max", "rise_end", "clearance_min", "I_A_max", "I_B_max", "I_C_max",
-            "I_D_max", "newton_iterations_mean"] + (["sticking_rotation_max", "rise_stick_max"] if model == "stick_slip"
-                                                    else [])
+            "I_D_max", "newton_iterations_mean"] + (["sticking_rotation_max", "rise_stick_max"] if sticking else [])
     out = {k: np.full(n, np.nan) for k in keys}
     out["newton_iterations_max"] = np.zeros(n, dtype=np.int32)
     failure, reached = np.full(n, np.nan), np.full(n, np.nan)
@@ -877,7 +881,7 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
         its = h["newton_iterations"] + h.get("newton_iterations_stick", 0)
         out["newton_iterations_max"][k] = its.max()
         out["newton_iterations_mean"][k] = its.sum() / max(steps - 1, 1)
-        if model == "stick_slip" and steps > 1:
+        if sticking and steps > 1:
             relative = np.einsum("tij,tkj->tik", h["stick_Q"][1:], h["Q"][:-1])
             turn = np.arccos(np.clip(0.5 * (np.trace(relative, axis1=1, axis2=2) - 1.0), -1.0, 1.0))
             out["sticking_rotation_max"][k] = np.degrees(turn.max())

@@ -31,15 +31,7 @@ from ..mechanics.models import REGISTRY
 from ..results import MODEL_TITLES
 from .sweep import MODEL_SPECIFIC
 
-#: how each model is drawn: compliant wide and solid underneath, stick-slip narrow and dashed on top
-MODEL_LINE = {
-    "compliant": dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
-    "stick_slip": dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3),
-}
-MODEL_MARKER = {
-    "compliant": dict(marker="o", ms=8, mfc="none", mew=1.8),
-    "stick_slip": dict(marker="D", ms=4.5, mew=0.8),
-}
+#: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
 OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))
 GROUP_MARKERS = ("o", "s", "^", "v", "P", "*")
 CAPACITY_COLOUR, FAILED_COLOUR = "crimson", "0.25"
@@ -70,22 +62,27 @@ UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
 
 # --- styles and labels -------------------------------------------------------------------------
+def _styled(model):
+    return model in REGISTRY and bool(REGISTRY[model].line)
+
+
 def _ordered(models):
-    """Model names in a fixed order: compliant, stick-slip, then any other by name."""
-    known = [m for m in MODEL_LINE if m in models]
-    return known + sorted(m for m in models if m not in MODEL_LINE)
+    """Model names in a fixed order: the registry's, then any other by name."""
+    known = [m for m in REGISTRY if m in models]
+    return known + sorted(m for m in models if m not in REGISTRY)
 
 
 def _line(model, models):
     """Colour, line style and width of a model (the same in every panel and figure)."""
-    if model in MODEL_LINE:
-        return MODEL_LINE[model]
-    others = [m for m in models if m not in MODEL_LINE]
+    if _styled(model):
+        return REGISTRY[model].line
+    others = [m for m in models if not _styled(m)]
     return OTHER_LINES[others.index(model) % len(OTHER_LINES)]
 
 
 def _marker(model):
-    return MODEL_MARKER.get(model, dict(marker="s", ms=5, mew=0.8))
+    entry = REGISTRY.get(model)
+    return entry.marker if entry is not None and entry.marker else dict(marker="s", ms=5, mew=0.8)
 
 
 def _title(model):
@@ -623,20 +620,22 @@ FIT_POINTS = 4
 def convergence_table(ds, points) -> list[dict]:
     """What a Δt study measures, per device (the point's other coordinates) and step size: the
     largest sticking rotation (deg, from the summaries ``ds``) and the largest differences between
-    stick-slip (end of step) and compliant sliding of θ² (deg) and of the rise of RB3 (m), from the
-    histories.
+    the first model with a sticking phase (stick-slip; end of step) and the first without one
+    (compliant sliding) of θ² (deg) and of the rise of RB3 (m), from the histories.
 
     ``points`` is a list of ({axis: value}, {model: history dataset}), one per history point with a
     ``dt``; a failed or cut history contributes up to its last step in common with the other model.
     """
     rows = []
     for point, runs in points:
-        if "dt" not in point or not {"compliant", "stick_slip"} <= set(runs):
+        sticking = [m for m in _ordered(runs) if m in REGISTRY and REGISTRY[m].sticking]
+        plain = [m for m in _ordered(runs) if m in REGISTRY and not REGISTRY[m].sticking]
+        if "dt" not in point or not sticking or not plain:
             continue
-        comp, stick = runs["compliant"], runs["stick_slip"]
+        comp, stick = runs[plain[0]], runs[sticking[0]]
         n = min(comp.sizes["t"], stick.sizes["t"])
         others = {k: v for k, v in point.items() if k != "dt"}
-        turn = ds["sticking_rotation_max"].sel(model="stick_slip", dt=point["dt"],
+        turn = ds["sticking_rotation_max"].sel(model=sticking[0], dt=point["dt"],
                                                **{k: v for k, v in others.items() if k in ds.dims})
         rows.append({"group": ", ".join(f"{k} = {v}" for k, v in others.items()) or "the case",
                      "dt": float(point["dt"]), "sticking_rotation_max": float(turn),

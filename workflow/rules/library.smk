@@ -12,7 +12,8 @@ import dccss
 
 LIBRARY = Path(dccss.__file__).parent
 #: modules that draw or check results (and the command line): the simulations do not run them
-DRAWING = ("drawing.py", "animation.py", "paper/figures.py", "paper/specs.py", "studies/plots.py")
+DRAWING = ("drawing.py", "viewer.py", "animation.py", "plan.py", "paper/figures.py", "paper/specs.py",
+           "studies/plots.py")
 NOT_COMPUTING = DRAWING + ("paper/validation.py", "cli.py")
 
 
@@ -32,7 +33,7 @@ def source_hash(include=None, exclude=()):
 COMPUTE_SOURCE = source_hash(exclude=NOT_COMPUTING)
 FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py", "paper/specs.py"))
 STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py"))
-ANIMATION_SOURCE = source_hash(include=("drawing.py", "animation.py"))
+ANIMATION_SOURCE = source_hash(include=("drawing.py", "viewer.py", "animation.py", "plan.py"))
 VALIDATION_SOURCE = source_hash(include=("paper/validation.py",))
 
 # numpy and OpenBLAS pick kernels by CPU; AVX-512 kernels round some results differently from the

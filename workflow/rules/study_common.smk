@@ -6,6 +6,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError
+from dccss.mechanics.models import REGISTRY
 from dccss.studies import Study, history_mapping, sweep_spec
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
@@ -43,9 +44,10 @@ def history_labels():
 
 
 def convergence_plot():
-    """A Δt study (a dt axis with both models run in full at its points) also gets its convergence plot."""
-    return "dt" in STUDY.axes and {"compliant", "stick_slip"} <= set(STUDY.models) and any(
-        "dt" in point for point in STUDY.histories)
+    """A Δt study (a dt axis, a model with a sticking phase and one without, run in full at its points)
+    also gets its convergence plot."""
+    sticking = {REGISTRY[model].sticking for model in STUDY.models}
+    return "dt" in STUDY.axes and sticking == {True, False} and any("dt" in point for point in STUDY.histories)
 
 
 def study_plots():
