@@ -33,7 +33,7 @@ Format (lengths in m, angles in degrees, times in s)::
     normals: signed        # optional: signed (default) or unsigned
     newton: {tol: 1.0e-12, max_iter: 25}   # optional
     capacity: continue     # optional: when the pad reaches a ring, continue (flagged), stop or error
-    on_failure: stop       # optional: a solver failure stops with an error (default), or mark: the
+    on_failure: error      # optional: a solver failure stops with an error (default), or mark: the
                            # history is written up to the failure and marked (failed, failure_time_s)
     id: my-case            # optional, recorded in the dataset
 """
@@ -48,19 +48,19 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from .checks import ON_FAILURE, CaseError, check_keys, choice, number
+from .checks import CaseError, check_keys, choice, number
 from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.models import MODELS
-from .mechanics.newton import NewtonOptions
+from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .paper.prototypes import TABLE1
 from .simulation import simulate
 
 REQUIRED = ("prototype", "excitation", "dt", "model")
 OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
-            "on_failure": "stop"}
+            "on_failure": "error"}
 EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
 EXCITATION_OPTIONAL = {"sine": ("scale", "azimuth"), "table": ("scale", "azimuth", "component"),
                        "record": ("scale", "window", "baseline", "units", "azimuth", "component")}
@@ -192,7 +192,7 @@ class Case:
     id: str | None = None
     parameters_hash: str | None = None
     capacity: str = "continue"
-    on_failure: str = "raise"
+    on_failure: str = "error"
 
     def run(self, progress=None):
         """Simulate the case: an xarray.Dataset (``progress(n, N)`` is called after each step)."""
@@ -236,7 +236,7 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
                 parameters_hash=parameters_hash(mapping),
                 capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
-                on_failure=ON_FAILURE[choice(m["on_failure"], "on_failure", ON_FAILURE)])
+                on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES))
 
 
 def load_case(path) -> Case:

@@ -4,10 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-#: on_failure in case and study files -> the solver's policy (``newton.FAILURE_POLICIES``): stop at
-#: the first failure (an error), or mark the failed case and go on
-ON_FAILURE = {"stop": "raise", "mark": "mark"}
-
 
 class CaseError(ValueError):
     """An input (a case or study file, a mapping, an argument) is invalid; the message names the key."""

@@ -7,14 +7,14 @@ import xarray as xr
 
 from .excitation import step_times
 from .mechanics import backend, models
-from .mechanics.capacity import CAPACITY_POLICIES, CapacityError, capacity_message, ring_reached
+from .mechanics.capacity import CAPACITY_POLICIES, capacity_message, history_error, ring_reached
 from .mechanics.kinematics import corner_diagnostics
 from .mechanics.newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
 from .results import breakaway_dataset, history_dataset
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
-             options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="raise",
+             options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="error",
              attrs: dict | None = None, progress=None) -> xr.Dataset:
     """Run one case and return its dataset.
 
@@ -33,7 +33,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         plate whose ring is reached first) and ``capacity_exceeded_by_m`` (how far the pad
         passes a ring at most) say when, where and by how much; ``stopped_at_s`` says where
         'stop' ended the history.
-    on_failure : 'raise' (a ConvergenceError) or 'mark': the dataset holds the history up to
+    on_failure : 'error' (a ConvergenceError) or 'mark': the dataset holds the history up to
         the last converged step, with the attributes ``failed`` = 1, ``failure_time_s`` (the
         step that failed) and ``failure_message``.
     attrs : extra global attributes (e.g. a case id).
@@ -60,7 +60,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         history = getattr(err, "history", None)
         gaps = None if history is None else corner_diagnostics(history["q"], geometry)[1]
         failure = _explain(err, geometry, None if gaps is None else (gaps[:, 0], gaps[:, 1]), times)
-        if on_failure == "raise" or history is None:
+        if on_failure == "error" or history is None:
             raise failure from None
     steps = history["q"]
     ds = history_dataset(model, history, geometry, times[:len(steps)], excitation,
@@ -145,7 +145,7 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
 
 
 def simulate_spatial(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
-                     options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="raise",
+                     options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="error",
                      attrs: dict | None = None, progress=None) -> xr.Dataset:
     """Run one case under a bidirectional excitation (``excitation.components == 2``) with the
     spatial models (``dccss.mechanics.spatial``) and return its dataset
@@ -170,7 +170,7 @@ def simulate_spatial(geometry, excitation, *, model="compliant", dt, theta2_0=0.
         history = getattr(err, "history", None)
         gaps = None if history is None else (history["clearance_1"], history["clearance_3"])
         failure = _explain(err, geometry, gaps, times)
-        if on_failure == "raise" or history is None:
+        if on_failure == "error" or history is None:
             raise failure from None
     steps = len(history["G"])
     if progress is not None:
@@ -190,9 +190,7 @@ def _settle(ds, geometry, capacity, failure, times, n_steps):
     reached = ring_reached(ds["clearance_1"].values, ds["clearance_3"].values, ds["t"].values)
     if reached:
         if capacity == "error":
-            raise CapacityError(capacity_message(geometry, reached) +
-                                ": the excitation exceeds the device capacity; lower it, or set capacity: "
-                                "continue (flag it) or stop (end the history there)")
+            raise history_error(geometry, reached)
         ds.attrs.update(capacity_exceeded_at_s=reached["t"], capacity_exceeded_plate=reached["plate"],
                         capacity_exceeded_by_m=reached["by"])
         if capacity == "stop" and n_steps < len(times):

@@ -168,7 +168,7 @@ def test_cli_writes_a_marked_failure_and_says_so(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "dccss: warning: the solver failed at t = 0.15 s; the history is written up to the last converged" in err
     assert xr.open_dataset(out).attrs["failed"] == 1
-    assert main(["run", str(write(tmp_path, {**case, "on_failure": "stop"})), "-o", str(tmp_path / "no.nc")]) == 3
+    assert main(["run", str(write(tmp_path, {**case, "on_failure": "error"})), "-o", str(tmp_path / "no.nc")]) == 3
     assert "Before the solver failed, the pad reached the retaining ring of RB1" in capsys.readouterr().err
     assert not (tmp_path / "no.nc").exists()
 

@@ -261,7 +261,7 @@ def test_a_case_without_solution_is_marked_and_the_study_completes(tmp_path):
 @pytest.mark.slow
 def test_a_failing_job_leaves_the_full_message_in_its_log(tmp_path):
     work = copy_project(tmp_path)
-    (work / "failing.yaml").write_text(yaml.safe_dump({**FAILING, "on_failure": "stop", "histories": []}))
+    (work / "failing.yaml").write_text(yaml.safe_dump({**FAILING, "on_failure": "error", "histories": []}))
     # both stick-slip chunks hold a case without solution: on one core they run one after the other,
     # and the first to fail stops the workflow (on two, both may already be running)
     run = snakemake(work, "--configfile", "failing.yaml", "--cores", "1")

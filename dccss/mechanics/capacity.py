@@ -45,6 +45,22 @@ def capacity_message(geometry, reached, tense="reaches") -> str:
             f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
 
 
+def case_error(t, index) -> CapacityError:
+    """The error of a sweep case that reaches a ring under capacity "error" (without on_failure "mark"):
+    when, and which case (``index`` in the batch, also the error's ``index``)."""
+    err = CapacityError(f"the pad reaches a retaining ring at t = {float(t):.6g} s in the case at batch index "
+                        f"{index} (capacity: error)")
+    err.index = index
+    return err
+
+
+def history_error(geometry, reached) -> CapacityError:
+    """The error of a history that reaches a ring under capacity "error": when, where, by how much
+    (``ring_reached``) and what to do."""
+    return CapacityError(capacity_message(geometry, reached) + ": the excitation exceeds the device capacity; "
+                         "lower it, or set capacity: continue (flag it) or stop (end the history there)")
+
+
 def mark_failures(summaries, failure, reached, capacity) -> dict:
     """Per-case summaries with their failures marked: the cases that failed (``failure``: the time,
     NaN if none) have NaN summaries; under ``capacity="error"`` reaching a ring (``reached``) is

@@ -70,7 +70,7 @@ except ImportError as err:  # an optional dependency
     raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
 
 from . import newton
-from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
+from .capacity import CAPACITY_POLICIES, case_error, mark_failures
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
@@ -923,8 +923,7 @@ def _raise_capacity(batch, acc, count, shape):
         return  # the solver's error comes first
     k = int(np.flatnonzero(steps == n)[0])
     index = tuple(int(i) for i in np.unravel_index(k, shape)) if shape else ()
-    raise CapacityError(f"the pad reaches a retaining ring at t = {float(acc[k, REACHED]):.6g} s in the case at "
-                        f"batch index {index} (capacity: error)")
+    raise case_error(acc[k, REACHED], index)
 
 
 def _summaries(model, acc, count, capacity):

@@ -40,18 +40,20 @@ class SingularJacobianError(ConvergenceError):
     """The constraint Jacobian is singular: the constraint set has no unique solution here."""
 
 
-FAILURE_POLICIES = ("raise", "mark")
+#: what a solver failure does: "error" (raise a ConvergenceError) or "mark" (the failed case is marked
+#: and the others go on); the same words in files and in the library
+FAILURE_POLICIES = ("error", "mark")
 
 
 @dataclass(frozen=True)
 class NewtonOptions:
-    """tol: max |contact residual| accepted (m); max_iter: iteration cap; on_failure: "raise"
+    """tol: max |contact residual| accepted (m); max_iter: iteration cap; on_failure: "error"
     (a ConvergenceError) or "mark" (the failed cases of a batch become NaN and are reported in
     ``NewtonResult.failed``; the others go on)."""
 
     tol: float = 1e-12
     max_iter: int = 25
-    on_failure: str = "raise"
+    on_failure: str = "error"
 
     def __post_init__(self):
         if isinstance(self.tol, bool) or not isinstance(self.tol, (int, float)) or not (

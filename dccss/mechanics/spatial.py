@@ -827,7 +827,7 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
     ``theta2_end`` the residual tilt (>= 0); the corners A, B, C, D are the trailing and leading
     rim points of each step's section on RB1 and on RB3 (for motion along +x, the planar corners);
     ``sticking_rotation_max`` is the largest angle the pad turns through in a sticking phase."""
-    from .capacity import CAPACITY_POLICIES, CapacityError, mark_failures
+    from .capacity import CAPACITY_POLICIES, case_error, mark_failures
 
     if model not in STEPPERS:
         raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {model!r}")
@@ -866,10 +866,7 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="conti
         if passed.size:
             reached[k] = now[passed[0]]
             if capacity == "error" and not mark:
-                err = CapacityError(f"the pad reaches a retaining ring at t = {reached[k]:.6g} s in the case at batch "
-                                    f"index {(k,)} (capacity: error)")
-                err.index = (k,)
-                raise err
+                raise case_error(reached[k], (k,))
         d = diagnostics(h, g)
         tilt_deg = np.degrees(d["tilt"])
         steps = len(tilt_deg)

@@ -25,7 +25,7 @@ A study file (schema: ``workflow/schemas/study.schema.yaml``)::
       alpha21: {start: 4.0, stop: 14.0, num: 21}
       h2: [0.08, 0.10, 0.12]
     chunk_size: auto             # cases per job: auto (default) splits each model's sweep in 4 jobs
-    on_failure: mark             # a case the solver fails on: mark it (NaN, flag) or stop
+    on_failure: mark             # a case the solver fails on: mark it (NaN, flag) or error (stop the study)
     capacity: continue           # the pad reaches a ring: continue (flag), stop (end there) or error
     marks: {DFP1: {alpha21: 10.0, h2: 0.15}}        # points drawn on the maps
     histories: [{alpha21: 10.0, h2: 0.15}]          # cases also run in full (or: all)

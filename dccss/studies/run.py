@@ -6,7 +6,6 @@ import numpy as np
 import xarray as xr
 
 from ..case import Case, case_from
-from ..checks import ON_FAILURE
 from ..mechanics import spatial
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
@@ -20,7 +19,7 @@ from .sweep import SUMMARIES, summarize
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:
     """Summaries of the cases of chunk k under ``model`` (dimension ``case``): one batch per step
     size; ``progress(done, total, cases, dt)`` is called after each step (for a log). A failure
-    that stops the study (``on_failure: stop``) names the sweep point."""
+    that stops the study (``on_failure: error``) names the sweep point."""
     grid = study.grid
     cases = grid.chunk(k)
     dts = grid.dt_of(cases)
@@ -67,11 +66,10 @@ def history_mapping(study, i, model) -> dict:
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]
-    policy = {v: k for k, v in ON_FAILURE.items()}[study.options.on_failure]
     return {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
             "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
             "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
-            "capacity": study.capacity, "on_failure": policy}
+            "capacity": study.capacity, "on_failure": study.options.on_failure}
 
 
 def history_case(study, i, model) -> Case:

@@ -9,13 +9,13 @@ from pathlib import Path
 import numpy as np
 
 from ..case import excitation_from, geometry_from, newton_from
-from ..checks import ON_FAILURE, CaseError, check_keys, choice, number
+from ..checks import CaseError, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
 from ..mechanics.models import MODELS
-from ..mechanics.newton import NewtonOptions
+from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from ..paper.prototypes import TABLE1
 from .grid import PLATE3_FOLLOWS, Grid
 
@@ -129,7 +129,7 @@ class Study:
                              f"only; got {config.get('normals')!r}")
         dt = _steps(config, axes, excitation)
         options = newton_from(config.get("newton"))
-        policy = choice(config.get("on_failure", "mark"), "on_failure", ON_FAILURE)
+        policy = choice(config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
         study = cls(name=name, description=description, prototype=dict(proto),
                     prototypes={k: dict(v) for k, v in known.items()}, symmetric=symmetric, excitation=excitation,
                     excitation_spec=dict(config["excitation"]),
@@ -137,7 +137,7 @@ class Study:
                     normals=choice(config.get("normals", "signed"), "normals", NORMALS), axes=axes,
                     chunk_size=_chunk_size(config.get("chunk_size", "auto"), axes),
                     capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES),
-                    options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=ON_FAILURE[policy]),
+                    options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
                     base=base)
         study.marks = _marks(config.get("marks", {}), axes)
         _check_grid(study.grid)

@@ -14,7 +14,7 @@ from dataclasses import fields
 import numpy as np
 
 from ..mechanics import backend, models
-from ..mechanics.capacity import CAPACITY_POLICIES, CapacityError, mark_failures
+from ..mechanics.capacity import CAPACITY_POLICIES, case_error, mark_failures
 from ..mechanics.geometry import Geometry
 from ..mechanics.kinematics import CORNERS, corner_diagnostics
 from ..mechanics.newton import NewtonOptions
@@ -112,10 +112,7 @@ def _summarize(model, geometry, Xg, theta2_0, shape, capacity, progress, **kw):
         first = np.isnan(reached) & ~stopped & (gap.min(axis=-1) < 0)
         if capacity == "error" and first.any() and not mark:
             index = tuple(int(i) for i in np.argwhere(np.broadcast_to(first, shape))[0]) if shape else ()
-            err = CapacityError(f"the pad reaches a retaining ring at t = {float(now):.6g} s in the case at "
-                                f"batch index {index} (capacity: error)")
-            err.index = index
-            raise err
+            raise case_error(now, index)
         reached = np.where(first, now, reached)
         if capacity != "continue":
             stopped = stopped | ~np.isnan(reached)
