@@ -247,7 +247,8 @@ def test_capacity_policies(model, capacity):
         with pytest.raises(CapacityError) as ref:
             sweep.summarize(model, GRID, GRID_XG, times=GRID_T, capacity=capacity)
         assert str(mine.value) == str(ref.value)
-        assert mine.value.index == ref.value.index and len(mine.value.index) == 2  # (R1, alpha21) of GRID: a study names it
+        # the case's (R1, alpha21) in GRID, by which a study names the sweep point
+        assert mine.value.index == ref.value.index and len(mine.value.index) == 2
 
 
 def test_bad_input_rejected_alike():

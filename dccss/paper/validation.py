@@ -40,6 +40,9 @@ from dataclasses import dataclass
 import numpy as np
 import yaml
 
+from ..schema import errors as schema_errors
+from ..schema import schema
+
 #: factor from the SI unit of the quantity's dimension to the unit
 UNITS = {"m": 1.0, "cm": 1e2, "mm": 1e3, "um": 1e6, "deg": 1.0, "cm/s": 1e2, "1": 1.0, "bool": 1.0,
          "1e-5 mm/cm3": 1e2}
@@ -48,11 +51,11 @@ DIMENSIONS = {"m": "length", "cm": "length", "mm": "length", "um": "length", "de
 CORNERS = ("A", "B", "C", "D")
 PHASES = ("start", "stick", "end")
 STATISTICS = ("mean", "max")
-RELATIONS = ("within", "greater", "less")
+RELATIONS = tuple(schema("paper_values")["$defs"]["value"]["properties"]["relation"]["enum"])
 #: how a reading derives the paper-implied value from the stated number(s) it reads
-LAWS = ("value", "ratio", "per_cubed_step")
+LAWS = tuple(schema("paper_values")["$defs"]["reading"]["properties"]["law"]["enum"])
 #: what a reading expects of the data
-READING_EXPECT = ("holds", "does not hold")
+READING_EXPECT = tuple(schema("paper_values")["$defs"]["reading"]["properties"]["expect"]["enum"])
 #: the first step of the cyclic part of a history: step 1 is the breakaway from rest (Fig. 7)
 FIRST_CYCLIC_STEP = 2
 #: Round-off floor (SI) of the kinds that are exactly zero in exact arithmetic. Interpenetrations
@@ -62,10 +65,6 @@ FIRST_CYCLIC_STEP = 2
 ROUND_OFF = {"diagonal_endpoint_mismatch": 1e-14, "breakaway_endpoint_mismatch": 1e-14}
 _VARIANT_NAMES = {"as_reported": "reported inputs", "as_printed": "Table 1 as printed",
                   "unsigned": "unsigned normals", "signed": "signed normals"}
-_ENTRY_KEYS = {"id", "description", "source", "value", "unit", "tolerance", "quantity", "expect"}
-_ENTRY_OPTIONAL = {"relation", "reason", "note", "reading"}
-_READING_KEYS = {"id", "description", "reads", "law", "variant", "unit", "quantity", "expect"}
-_READING_OPTIONAL = {"ground_step", "reason", "note"}
 
 QUANTITIES = {}
 CASE_KINDS = set()
@@ -442,35 +441,34 @@ def load_values(path, catalogue: Catalogue) -> PaperValues:
     """
     with open(path) as f:
         data = yaml.safe_load(f)
-    errors = []
-    if not isinstance(data, dict) or not isinstance(data.get("values"), list):
-        raise ValueError(f"{path}: expected a mapping with a list 'values'")
-    unknown = set(data) - {"values", "readings"}
-    if unknown:
-        errors.append(f"{path}: unknown top-level key(s) {sorted(unknown)}")
+    problems = schema_errors("paper_values", data)  # the file's structure: dccss/schemas/paper_values.schema.yaml
+    top = [p for p in problems if len(p.owner) < 2]
+    if top:
+        raise ValueError("\n".join(f"{path}: {p.message}" for p in top))
     entries, readings = data["values"], data.get("readings") or []
     ids = [e.get("id", "?") if isinstance(e, dict) else "?" for e in [*entries, *readings]]
-    errors += [f"paper value {i!r} is listed {ids.count(i)} times" for i in dict.fromkeys(ids) if ids.count(i) > 1]
-    for e in entries:
-        errors += _entry_errors(e, catalogue)
+    errors = [f"paper value {i!r} is listed {ids.count(i)} times" for i in dict.fromkeys(ids) if ids.count(i) > 1]
     stated = {e.get("id"): e for e in entries if isinstance(e, dict)}
-    for g in readings:
-        errors += _reading_errors(g, catalogue, stated)
+    for section, items, check in (("values", entries, lambda e: _entry_errors(e, catalogue)),
+                                  ("readings", readings, lambda g: _reading_errors(g, catalogue, stated))):
+        for i, item in enumerate(items):
+            mine = [p for p in problems if p.owner == (section, i)]
+            label = "paper value" if section == "values" else "reading"
+            if not isinstance(item, dict):
+                errors.append(f"{label} {item!r} is not a mapping")
+            elif mine:  # what the schema finds first, then the rest once the structure holds
+                errors += [f"{label} {item.get('id', '?')!r}: {p.message}" for p in mine]
+            else:
+                errors += check(item)
     if errors:
         raise ValueError("\n".join(errors))
     return PaperValues(tuple(entries), tuple(readings))
 
 
 def _entry_errors(e, catalogue):
-    if not isinstance(e, dict):
-        return [f"paper value {e!r} is not a mapping"]
-    name = f"paper value {e.get('id', '?')!r}"
-    errors = _key_errors(name, e, _ENTRY_KEYS, _ENTRY_OPTIONAL)
-    if errors:
-        return errors
-    errors += _number_errors(name, e)
-    if e.get("relation", "within") not in RELATIONS:
-        errors.append(f"{name}: relation {e['relation']!r} is not one of {list(RELATIONS)}")
+    """What the schema cannot say of a paper value."""
+    name = f"paper value {e['id']!r}"
+    errors = []
     if not e["expect"] and not e.get("reason"):
         errors.append(f"{name}: a value expected not to reproduce needs a 'reason'")
     errors += _quantity_errors(name, "quantity", e["quantity"], catalogue, e["unit"])
@@ -481,24 +479,14 @@ def _entry_errors(e, catalogue):
 
 
 def _entry_reading_errors(name, reading, unit, catalogue):
-    if not isinstance(reading, dict):
-        return [f"{name}: reading must be a mapping with label, quantity, expect"]
-    errors = _key_errors(f"{name}: reading", reading, {"label", "quantity", "expect"}, set())
-    if errors:
-        return errors
-    errors += _quantity_errors(name, "reading.quantity", reading["quantity"], catalogue, unit)
+    errors = _quantity_errors(name, "reading.quantity", reading["quantity"], catalogue, unit)
     return errors + _expect_errors(name, "reading.expect", reading["expect"], reading["quantity"], catalogue)
 
 
 def _reading_errors(g, catalogue, stated):
-    if not isinstance(g, dict):
-        return [f"reading {g!r} is not a mapping"]
-    name = f"reading {g.get('id', '?')!r}"
-    errors = _key_errors(name, g, _READING_KEYS, _READING_OPTIONAL)
-    if errors:
-        return errors
-    if g["law"] not in LAWS:
-        return [f"{name}: law {g['law']!r} is not one of {list(LAWS)}"]
+    """What the schema cannot say of a reading."""
+    name = f"reading {g['id']!r}"
+    errors = []
     reads = g["reads"] if isinstance(g["reads"], list) else [g["reads"]]
     unknown = [i for i in reads if i not in stated]
     if unknown:
@@ -508,8 +496,6 @@ def _reading_errors(g, catalogue, stated):
                       f"not {len(reads)}")
     errors += _quantity_errors(name, "quantity", g["quantity"], catalogue, g["unit"])
     errors += _expect_errors(name, "variant", [g["variant"]], g["quantity"], catalogue)
-    if g["expect"] not in READING_EXPECT:
-        errors.append(f"{name}: expect {g['expect']!r} is not one of {list(READING_EXPECT)}")
     if g["expect"] != "holds" and not g.get("reason"):
         errors.append(f"{name}: a reading expected not to hold needs a 'reason'")
     return errors + _law_errors(name, g, [stated[i] for i in reads], catalogue)
@@ -536,28 +522,6 @@ def _law_errors(name, g, read, catalogue):
     return errors
 
 
-def _key_errors(name, mapping, required, optional):
-    errors = []
-    missing, unknown = required - set(mapping), set(mapping) - required - optional
-    if missing:
-        errors.append(f"{name}: missing key(s) {sorted(missing)}")
-    if unknown:
-        errors.append(f"{name}: unknown key(s) {sorted(unknown)}; known: {sorted(required | optional)}")
-    return errors
-
-
-def _number_errors(name, e):
-    errors = []
-    for key in ("value", "tolerance"):
-        if not _is_number(e[key]):
-            errors.append(f"{name}: {key} {e[key]!r} is not a number")
-    if _is_number(e["tolerance"]) and e["tolerance"] < 0:
-        errors.append(f"{name}: tolerance {e['tolerance']!r} is negative")
-    if not isinstance(e["expect"], list):
-        errors.append(f"{name}: expect must be a list of variants, not {e['expect']!r}")
-    return errors
-
-
 def _is_number(x):
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
@@ -569,9 +533,7 @@ def _quantity_errors(name, where, q, catalogue, unit):
         return [f"{name}: {where}.kind {kind!r} is not a known kind; known: {sorted(QUANTITIES)}"]
     kind = q["kind"]
     errors = []
-    if unit not in UNITS:
-        errors.append(f"{name}: unit {unit!r} is not one of {list(UNITS)}")
-    elif DIMENSIONS[unit] != KIND_DIMENSIONS[kind]:
+    if DIMENSIONS[unit] != KIND_DIMENSIONS[kind]:
         errors.append(f"{name}: unit {unit!r} measures {DIMENSIONS[unit]}; {where}.kind {kind!r} gives "
                       f"{KIND_DIMENSIONS[kind]}")
     params = list(inspect.signature(QUANTITIES[kind]).parameters.values())[2:]
