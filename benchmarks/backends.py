@@ -6,7 +6,7 @@ loads its kernels from the on-disk cache, or compiles them if the cache is empty
 * ``compile``: the compiled kernels built from an empty cache (a temporary NUMBA_CACHE_DIR);
 * ``sweep``: N cases of DFP1-type devices with pad angles alpha21 spread over 6..12 deg, 1000
   steps each (sine of 0.27 m at 30 rad/s over 1 s, dt = 0.001 s), reduced to per-case
-  summaries (``dccss.studies.sweep.summarize`` / ``dccss.mechanics.compiled.summarize``), as benchmarks/sweep.py;
+  summaries (``dccss.mechanics.summaries.summarize`` / ``dccss.mechanics.compiled.summarize``), as benchmarks/sweep.py;
 * ``history``: one stick-slip history of DFP1, the same sine over 30 s at dt = 0.001 s
   (30 000 steps; ``dccss.mechanics.models.stick_slip``);
 * ``run``: the same history through ``dccss run CASE.yaml -o OUT.nc`` as a whole process
@@ -70,7 +70,7 @@ def sweep(backend, model, n, steps, queue):
     import numpy as np
 
     from dccss.excitation import Sine
-    from dccss.studies.sweep import summarize
+    from dccss.mechanics.summaries import summarize
 
     geometry = _geometry(n)
     Xg = Sine(0.27, 30.0, 1.0).displacement(np.arange(steps + 1) * (1.0 / steps))

@@ -1,5 +1,5 @@
 """Backend selection (DCCSS_BACKEND, dccss.mechanics.backend) and the dispatch of models.run,
-sweep.summarize and simulate to the compiled kernels.
+summaries.summarize and simulate to the compiled kernels.
 
 The fast tests stand in a fake for the compiled module (or block numba's import); the tests
 marked slow run the real kernels (they compile them with an empty cache) and check that both
@@ -12,16 +12,14 @@ import warnings
 import numpy as np
 import pytest
 
-from dccss import simulation
 from dccss.cli import main
 from dccss.excitation import Sine, step_times
-from dccss.mechanics import backend, models
+from dccss.mechanics import backend, models, runs, summaries
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import ConvergenceError, NewtonOptions
 from dccss.paper.prototypes import DFP1, TABLE1
 from dccss.simulation import simulate
-from dccss.studies import sweep
 
 TOL = 1e-10
 #: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, sticking fails at 0.15 s
@@ -125,7 +123,7 @@ def test_auto_without_numba_warns_once_and_runs_numpy(monkeypatch, no_numba):
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # once per process
         simulate(DFP1, excitation, model="compliant", dt=0.01)
-        sweep.summarize("compliant", DFP1, np.zeros((3, 2)))
+        summaries.summarize("compliant", DFP1, np.zeros((3, 2)))
 
 
 def test_auto_where_numba_fails_to_import_warns_and_runs_numpy(monkeypatch, no_numba):
@@ -154,12 +152,12 @@ class Fake:
             stop_at_ring=False):
         self.calls.append(("run", model, stop_at_ring))
         with numpy_backend():
-            return simulation._history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, None)
+            return runs._planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, None)
 
     def summarize(self, model, geometry, Xg, theta2_0=0.0, **kw):
         self.calls.append(("summarize", model, kw.get("capacity")))
         with numpy_backend():
-            return sweep.summarize(model, geometry, Xg, theta2_0, **kw)
+            return summaries.summarize(model, geometry, Xg, theta2_0, **kw)
 
 
 class numpy_backend:
@@ -225,12 +223,12 @@ def test_models_run_and_summarize_dispatch(fake):
     Xg = 0.1 * np.sin(np.linspace(0.0, np.pi, 11))
     with numpy_backend():
         expected = models.run("stick_slip", DFP1, Xg)
-        summaries = sweep.summarize("compliant", DFP1, np.stack([Xg, -Xg], axis=1), capacity="stop")
+        reference = summaries.summarize("compliant", DFP1, np.stack([Xg, -Xg], axis=1), capacity="stop")
     history = models.run("stick_slip", DFP1, Xg)
     assert history.keys() == expected.keys() and all(np.array_equal(history[k], expected[k], equal_nan=True)
                                                       for k in history)
-    out = sweep.summarize("compliant", DFP1, np.stack([Xg, -Xg], axis=1), capacity="stop")
-    assert all(np.array_equal(out[k], summaries[k], equal_nan=True) for k in out)
+    out = summaries.summarize("compliant", DFP1, np.stack([Xg, -Xg], axis=1), capacity="stop")
+    assert all(np.array_equal(out[k], reference[k], equal_nan=True) for k in out)
     assert fake.calls == [("run", "stick_slip", False), ("summarize", "compliant", "stop")]
 
 
@@ -327,5 +325,5 @@ def test_models_run_and_summarize_numba_equal_numpy(monkeypatch):
     for model in models.MODELS:
         ours, ref = both(monkeypatch, lambda m=model: models.run(m, g, Xg))
         assert all(np.allclose(ours[k], ref[k], rtol=0, atol=TOL, equal_nan=True) for k in ref)
-        ours, ref = both(monkeypatch, lambda m=model: sweep.summarize(m, g, Xg, capacity="stop"))
+        ours, ref = both(monkeypatch, lambda m=model: summaries.summarize(m, g, Xg, capacity="stop"))
         assert all(np.allclose(ours[k], ref[k], rtol=0, atol=TOL, equal_nan=True) for k in ref)

@@ -120,7 +120,7 @@ def _ring_batch():
 def test_spatial_sweep_capacity_policies_match_the_planar_sweep(capacity):
     from dccss.mechanics.capacity import CapacityError
     from dccss.mechanics.newton import NewtonOptions
-    from dccss.studies.sweep import summarize
+    from dccss.mechanics.summaries import summarize
 
     g, X, t = _ring_batch()
     planar_x = np.hypot(X[..., 0], X[..., 1])

@@ -15,18 +15,17 @@ import numpy as np
 import pytest
 from test_properties import random_device, small_motion
 
-from dccss.mechanics import compiled, models, newton
+from dccss.mechanics import compiled, models, newton, summaries
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.kinematics import all_corners, frames, local
 from dccss.paper.prototypes import TABLE1
-from dccss.studies import sweep
 
 TOL = 1e-10
 
 
 @pytest.fixture(autouse=True)
 def reference_is_numpy(monkeypatch):
-    """models.run and sweep.summarize send large runs to the compiled kernels (DCCSS_BACKEND=auto):
+    """models.run and summaries.summarize send large runs to the compiled kernels (DCCSS_BACKEND=auto):
     here they are the numpy reference, whatever the size."""
     monkeypatch.setenv("DCCSS_BACKEND", "numpy")
 
@@ -103,7 +102,7 @@ def test_batch_histories_and_summaries(devices, model, normals):
     assert_same(compiled.run(model, batch, motions, theta2_0, normals=normals),
                 models.run(model, batch, motions, theta2_0, normals=normals), batch)
     assert_same(compiled.summarize(model, batch, motions, theta2_0, normals=normals),
-                sweep.summarize(model, batch, motions, theta2_0, normals=normals))
+                summaries.summarize(model, batch, motions, theta2_0, normals=normals))
 
 
 @pytest.mark.parametrize("model", models.MODELS)
@@ -116,7 +115,7 @@ def test_one_case_histories_and_summaries(devices, model, normals, k):
     assert_same(compiled.run(model, g, Xg, t0, normals=normals, times=times),
                 models.run(model, g, Xg, t0, normals=normals, times=times), g)
     assert_same(compiled.summarize(model, g, Xg, t0, normals=normals, times=times),
-                sweep.summarize(model, g, Xg, t0, normals=normals, times=times))
+                summaries.summarize(model, g, Xg, t0, normals=normals, times=times))
 
 
 def test_batch_of_one_and_shared_motion(devices):
@@ -125,7 +124,7 @@ def test_batch_of_one_and_shared_motion(devices):
     one = stack(devices[1:2])
     for model in models.MODELS:
         assert_same(compiled.summarize(model, one, motions[:, 1:2], theta2_0[1:2]),
-                    sweep.summarize(model, one, motions[:, 1:2], theta2_0[1:2]))
+                    summaries.summarize(model, one, motions[:, 1:2], theta2_0[1:2]))
         batch = stack(devices[:3])
         assert_same(compiled.run(model, batch, motions[:, 0]), models.run(model, batch, motions[:, 0]), batch)
 
@@ -136,7 +135,7 @@ def test_failures_and_capacity_marked_alike(model):
     """Cases past a retaining ring and (stick-slip) cases the solver fails on, with
     on_failure="mark": the same NaN from the failing step on, the same flags and times."""
     ours = compiled.summarize(model, GRID, GRID_XG, options=MARK, times=GRID_T)
-    ref = sweep.summarize(model, GRID, GRID_XG, options=MARK, times=GRID_T)
+    ref = summaries.summarize(model, GRID, GRID_XG, options=MARK, times=GRID_T)
     assert_same(ours, ref)
     assert ref["capacity_exceeded"].any()
     if model == "stick_slip":
@@ -147,7 +146,7 @@ def test_failures_and_capacity_marked_alike(model):
     assert_same(compiled.run(model, WIDE, GRID_XG, options=MARK), models.run(model, WIDE, GRID_XG, options=MARK),
                 WIDE)
     assert_same(compiled.summarize(model, WIDE, GRID_XG, options=MARK),
-                sweep.summarize(model, WIDE, GRID_XG, options=MARK))
+                summaries.summarize(model, WIDE, GRID_XG, options=MARK))
 
 
 def error_of(call):
@@ -232,20 +231,20 @@ def test_stop_at_ring_ends_where_simulate_stops():
             assert (gap[len(h["q"]) - 1] < 0).any() and not (gap[:len(h["q"]) - 1] < 0).any()
 
 
-@pytest.mark.skipif("capacity" not in inspect.signature(sweep.summarize).parameters,
+@pytest.mark.skipif("capacity" not in inspect.signature(summaries.summarize).parameters,
                     reason="the reference summaries have no capacity policies")
 @pytest.mark.parametrize("model", models.MODELS)
 @pytest.mark.parametrize("capacity", ["stop", "error"])
 def test_capacity_policies(model, capacity):
     kw = dict(options=MARK, times=GRID_T, capacity=capacity)
-    assert_same(compiled.summarize(model, GRID, GRID_XG, **kw), sweep.summarize(model, GRID, GRID_XG, **kw))
+    assert_same(compiled.summarize(model, GRID, GRID_XG, **kw), summaries.summarize(model, GRID, GRID_XG, **kw))
     from dccss.mechanics.capacity import CapacityError
 
     if capacity == "error":
         with pytest.raises(CapacityError) as mine:
             compiled.summarize(model, GRID, GRID_XG, times=GRID_T, capacity=capacity)
         with pytest.raises(CapacityError) as ref:
-            sweep.summarize(model, GRID, GRID_XG, times=GRID_T, capacity=capacity)
+            summaries.summarize(model, GRID, GRID_XG, times=GRID_T, capacity=capacity)
         assert str(mine.value) == str(ref.value)
         # the case's (R1, alpha21) in GRID, by which a study names the sweep point
         assert mine.value.index == ref.value.index and len(mine.value.index) == 2

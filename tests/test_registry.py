@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from dccss.excitation import Sine
-from dccss.mechanics import models
+from dccss.mechanics import models, summaries
 from dccss.mechanics.models import Model, Step
 from dccss.paper.prototypes import DFP1
 from dccss.simulation import simulate
-from dccss.studies import plots, sweep
+from dccss.studies import plots
 
 
 def rigid_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=None, times=None):
@@ -40,7 +40,7 @@ def test_a_registered_model_runs_through_simulate(rigid):
 
 def test_a_registered_model_runs_through_a_sweep_and_the_plots(rigid):
     Xg = np.stack([np.linspace(0.0, a, 11) for a in (0.05, 0.1, 0.25)], axis=-1)
-    out = sweep.summarize("rigid", DFP1, Xg, capacity="continue")
+    out = summaries.summarize("rigid", DFP1, Xg, capacity="continue")
     assert np.array_equal(out["theta2_max_abs"], np.zeros(3))
     # RB3 moves with RB1: the pad stays centred on both plates, at the clearance of the rest position
     rest = min(DFP1.ring_inner_x[0] - DFP1.A1, DFP1.ring_inner_x[1] - DFP1.A3)

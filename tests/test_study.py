@@ -14,9 +14,9 @@ from dccss.excitation import Sine, step_times
 from dccss.mechanics import models
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import NewtonOptions
+from dccss.mechanics.summaries import summarize
 from dccss.paper.prototypes import TABLE1
 from dccss.studies import Study, combine, history_case, history_mapping, run_chunk
-from dccss.studies.sweep import summarize
 
 TINY = {
     "study": {"name": "tiny", "description": "test"},

@@ -7,9 +7,9 @@ from dccss.excitation import Sine, step_times
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import NewtonOptions
+from dccss.mechanics.summaries import summarize
 from dccss.paper.prototypes import TABLE1
 from dccss.simulation import simulate
-from dccss.studies.sweep import summarize
 
 #: DFP1, and DFP1 with plate 3 steeper (RB3's ring at 15.6 cm reached first)
 DEVICES = [TABLE1["DFP1"], {**TABLE1["DFP1"], "alpha3": 19.0}]

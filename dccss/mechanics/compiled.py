@@ -4,7 +4,7 @@ The entry points take and return what the numpy reference does:
 
 * ``compliant``, ``stick_slip`` and ``run``: the histories of ``dccss.mechanics.models`` (same keys,
   shapes, dtypes; the same ConvergenceError / SingularJacobianError messages);
-* ``summarize``: the per-case summaries of ``dccss.studies.sweep.summarize`` (same keys, dtypes, NaN and
+* ``summarize``: the per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes, NaN and
   flag conventions, capacity policies), reduced on the fly inside the compiled loop: memory
   O(cases), no (T, N, 9) arrays.
 
@@ -461,7 +461,7 @@ def _slip_set(F, pad, centre, radius, dims, c1, c3, signed):
     return cset, Ry3_rc
 
 
-# --- summaries (sweep.py) ------------------------------------------------------------------
+# --- summaries (summaries.py) ------------------------------------------------------------------
 @jit
 def _fmax(a, b):
     if b != b:
@@ -879,7 +879,7 @@ def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
 
 def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, normals="signed",
               options=NewtonOptions(), times=None) -> dict:
-    """The per-case summaries of ``dccss.studies.sweep.summarize`` (same keys, dtypes and NaN / flag
+    """The per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes and NaN / flag
     conventions, the same ``capacity`` policies), reduced inside the compiled loop: memory
     O(cases). ``progress(n, N)`` is called once, when all N steps are done."""
 

@@ -820,7 +820,7 @@ def _case_geometry(geometry, k, n):
 def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="continue", progress=None,
               options=NewtonOptions(), times=None) -> dict:
     """Per-case summaries of a batch of bidirectional cases, with the keys and conventions of
-    ``dccss.studies.sweep.summarize`` (one compiled history after another).
+    ``dccss.mechanics.summaries.summarize`` (one compiled history after another).
 
     Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,).
     Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and

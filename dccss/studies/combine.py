@@ -6,8 +6,8 @@ import numpy as np
 import xarray as xr
 
 from ..mechanics.models import REGISTRY
+from ..mechanics.summaries import MODEL_SPECIFIC, SUMMARIES
 from ..results import global_attrs, variable
-from .sweep import MODEL_SPECIFIC, SUMMARIES
 
 
 def axis_variable(dims, name, values):

@@ -74,7 +74,7 @@ class Grid:
         excitation, values = self.study.excitation, self.values(cases)
         if "azimuth" in values:
             return np.radians(values["azimuth"])
-        base = np.full(len(cases), float(excitation.azimuth))
+        base = np.full(len(cases), float(getattr(excitation, "azimuth", 0.0)))  # planar: unused
         if "component" in values:
             return np.where(values["component"] == "y", np.pi / 2, np.where(values["component"] == "x", 0.0, base))
         return base

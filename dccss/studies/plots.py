@@ -28,8 +28,8 @@ from matplotlib.ticker import NullLocator
 
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
+from ..mechanics.summaries import MODEL_SPECIFIC
 from ..results import MODEL_TITLES
-from .sweep import MODEL_SPECIFIC
 
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
 OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))

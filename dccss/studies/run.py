@@ -6,14 +6,14 @@ import numpy as np
 import xarray as xr
 
 from ..case import Case, case_from
-from ..mechanics import spatial
+from ..mechanics import runs
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
+from ..mechanics.summaries import SUMMARIES
 from ..results import variable
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
-from .sweep import SUMMARIES, summarize
 
 
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:
@@ -30,13 +30,9 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
         ground = grid.ground_motion(group, times)
         try:
-            if ground.ndim == 3:  # bidirectional: the spatial models, case by case
-                part = spatial.summarize(model, grid.geometry(group), ground, grid.theta2_0_of(group),
-                                         azimuth=grid.azimuth_of(group), options=study.options, times=times,
-                                         capacity=study.capacity, progress=report)
-            else:
-                part = summarize(model, grid.geometry(group), ground, grid.theta2_0_of(group), normals=study.normals,
-                                 options=study.options, times=times, capacity=study.capacity, progress=report)
+            part = runs.summaries(model, grid.geometry(group), ground, grid.theta2_0_of(group),
+                                  azimuth=grid.azimuth_of(group), normals=study.normals, options=study.options,
+                                  times=times, capacity=study.capacity, progress=report)
         except (ConvergenceError, CapacityError) as err:
             index = getattr(err, "index", None)
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"

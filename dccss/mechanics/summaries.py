@@ -13,11 +13,11 @@ from dataclasses import fields
 
 import numpy as np
 
-from ..mechanics import backend, models
-from ..mechanics.capacity import CAPACITY_POLICIES, case_error, mark_failures
-from ..mechanics.geometry import Geometry
-from ..mechanics.kinematics import CORNERS, corner_diagnostics
-from ..mechanics.newton import NewtonOptions
+from . import backend, models
+from .capacity import CAPACITY_POLICIES, case_error, mark_failures
+from .geometry import Geometry
+from .kinematics import CORNERS, corner_diagnostics
+from .newton import NewtonOptions
 
 #: summary variable -> (units, long_name): those of every model, then each model's own
 SUMMARIES = {

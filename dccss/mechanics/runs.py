@@ -1,0 +1,193 @@
+"""The one driver of runs: a history or a sweep, planar or spatial, on the backend that fits, with the
+run policies applied as events.
+
+The ground motion says which models run: X_g of shape (T,) for one case or (T, n) for a sweep moves
+RB1 along a line (the planar models, ``models``; compiled where ``backend`` says), (T, 2) or
+(T, n, 2) moves it in the plane (the spatial models, ``spatial``, compiled). The policies are
+applied here:
+
+* ``capacity``: "continue" flags the first step beyond a retaining ring (``Run.reached``); "stop"
+  ends the run there, a terminal event as scipy's ``solve_ivp`` treats them (a later solver failure
+  is then not one); "error" raises ``capacity.history_error`` (a sweep: ``capacity.case_error``).
+* ``on_failure``: "error" raises the solver's ConvergenceError, explained by the ring the pad passed
+  before it if it did (beyond the ring the model describes no real device and a smaller dt does not
+  help); "mark" keeps what converged and says where it failed.
+
+``history`` returns a ``Run``: the history up to where it ended, with its status and message, the
+ring it reached and the failure; ``summaries`` the per-case summaries of a sweep
+(``summaries.SUMMARIES``), failures and rings marked per case.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import backend, models
+from .capacity import CAPACITY_POLICIES, capacity_message, history_error, ring_reached
+from .kinematics import NORMALS, corner_diagnostics
+from .newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
+from .summaries import summarize
+
+MOTIONS = ("planar", "spatial")
+
+
+@dataclass(frozen=True)
+class Run:
+    """A history and how it ended.
+
+    history : the arrays of the stored steps, time first (``models.collect``, ``spatial.run``).
+    motion : "planar" or "spatial".
+    status : "completed", "stopped" (at a ring, capacity "stop") or "failed" (on_failure "mark").
+    message : what ended it early ("" when completed).
+    reached : when, where and by how much the pad passed a ring (``capacity.ring_reached``), or None.
+    failure : the solver's error (on_failure "mark"), or None.
+    """
+
+    history: dict
+    motion: str
+    status: str
+    message: str
+    reached: dict | None
+    failure: ConvergenceError | None
+
+    @property
+    def steps(self) -> int:
+        """The number of steps stored (t_0 included)."""
+        return len(self.history["q" if self.motion == "planar" else "G"])
+
+
+def check_policies(capacity, on_failure):
+    """A ValueError names a policy that is not one."""
+    if capacity not in CAPACITY_POLICIES:
+        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
+    if on_failure not in FAILURE_POLICIES:
+        raise ValueError(f"on_failure must be one of {FAILURE_POLICIES}, got {on_failure!r}")
+
+
+def motion_of(Xg) -> str:
+    """"planar" for one case's X_g of shape (T,), "spatial" for (T, 2)."""
+    if np.ndim(Xg) == 1:
+        return "planar"
+    if np.ndim(Xg) == 2 and np.shape(Xg)[-1] == 2:
+        return "spatial"
+    raise ValueError(f"Xg must have shape (T,) or (T, 2), got {np.shape(Xg)}")
+
+
+def clearances(history, geometry, motion):
+    """The clearances to the rings of RB1 and RB3 (m, negative beyond a ring) of every stored step."""
+    if motion == "spatial":
+        return history["clearance_1"], history["clearance_3"]
+    gap = corner_diagnostics(history["q"], geometry)[1]
+    return gap[..., 0], gap[..., 1]
+
+
+def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed", options=NewtonOptions(),
+            capacity="continue", on_failure="error", times=None, progress=None) -> Run:
+    """One case: ``model`` under X_g (m; (T,) planar, (T, 2) spatial), from the compatible start at
+    theta2_0 (rad; in the vertical plane of ``azimuth`` (rad) in space), with the run policies
+    (module docstring). ``times`` (s) are quoted in errors and events; ``progress(n, N)`` is called
+    after each step (once, at the end, on the compiled kernels)."""
+    models.model(model)  # a ValueError names the known models
+    check_policies(capacity, on_failure)
+    if np.ndim(geometry.L) != 0:
+        raise ValueError("a history runs one case: geometry fields must be scalars")
+    Xg = np.asarray(Xg, dtype=float)
+    motion = motion_of(Xg)
+    if motion == "spatial":
+        from . import spatial  # numba: imported by the runs that need it
+    if motion == "spatial" and model not in spatial.STEPPERS:
+        raise ValueError(f"model must be one of {spatial.SPATIAL_MODELS} in space, got {model!r}")
+    if motion == "spatial" and normals != "signed":
+        raise ValueError(f"normals: the spatial model (bidirectional ground motion) uses signed normals only, got "
+                         f"{normals!r} (unsigned normals reproduce the planar paper's computation)")
+    if normals not in NORMALS:
+        raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
+    times = np.arange(len(Xg), dtype=float) if times is None else np.asarray(times, dtype=float)
+    stop = capacity != "continue"
+    failure = None
+    try:
+        if motion == "spatial":
+            out = spatial.run(model, geometry, Xg, theta2_0, azimuth=azimuth, options=options, times=times,
+                              stop_at_ring=stop)
+        else:
+            out = _planar(model, geometry, Xg, theta2_0, normals, options, times, stop, progress)
+    except ConvergenceError as err:
+        out = getattr(err, "history", None)
+        failure = _explain(err, geometry, out, motion, times)
+        if on_failure == "error" or out is None:
+            raise failure from None
+    run = Run(out, motion, "completed", "", None, failure)
+    if motion == "spatial" and progress is not None:
+        progress(run.steps - 1, len(Xg) - 1)
+    reached = ring_reached(*clearances(out, geometry, motion), times[:run.steps])
+    if reached and capacity == "error":
+        raise history_error(geometry, reached)
+    if failure is not None:
+        status, message = "failed", str(failure)
+    elif reached and capacity == "stop" and run.steps < len(Xg):
+        status, message = "stopped", capacity_message(geometry, reached, "reached") + ": the run stopped there"
+    else:
+        status, message = "completed", ""
+    return Run(out, motion, status, message, reached, failure)
+
+
+def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, progress):
+    """The planar history (``models.collect``); with ``stop_at_ring`` it ends at the first step
+    where the pad has passed a retaining ring. A ConvergenceError carries the history up to the
+    last converged step as ``err.history``. A long history runs on the compiled kernels
+    (``backend``; ``progress`` is then called once, at the end)."""
+    kernels, out = backend.compiled(model, len(Xg) - 1), None
+    if kernels is not None:
+        try:
+            out = kernels.run(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
+                              stop_at_ring=stop_at_ring)
+        except ConvergenceError as err:
+            out = getattr(err, "history", None)
+            raise
+        finally:
+            if progress is not None and out is not None:
+                progress(len(out["q"]) - 1, len(Xg) - 1)
+        return out
+    steps = []
+    try:
+        for step in models.steps(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times):
+            steps.append(step)
+            if progress is not None:
+                progress(step.n, len(Xg) - 1)
+            if stop_at_ring and (corner_diagnostics(step.q, geometry)[1] < 0).any():
+                break  # the pad reaches a ring: stop here (or fail below) before solving further
+    except ConvergenceError as err:
+        if steps:
+            err.history = models.collect(steps)
+        raise
+    return models.collect(steps)
+
+
+def _explain(err, geometry, out, motion, times):
+    """A solver failure, prefixed with the ring the pad passed before it (if it did)."""
+    if out is None:
+        return err
+    gaps = clearances(out, geometry, motion)
+    reached = ring_reached(gaps[0], gaps[1], times[:len(gaps[0])])
+    if reached is None:
+        return err
+    return err.with_hint(
+        "Beyond the ring the model describes no real device and a smaller dt does not help: set capacity: "
+        "stop to end the history at the ring, or lower the excitation.",
+        prefix=f"Before the solver failed, {capacity_message(geometry, reached, 'reached')}.")
+
+
+def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed", options=NewtonOptions(),
+              capacity="continue", times=None, progress=None) -> dict:
+    """Per-case summaries of a sweep: X_g (T, n) planar or (T, n, 2) spatial; geometry fields,
+    theta2_0 and (in space) ``azimuth`` broadcast over the cases. Policies as for ``history``, per
+    case (``options.on_failure``: "error" raises the first failure, "mark" marks it and goes on)."""
+    if np.ndim(Xg) == 3:
+        from . import spatial  # numba: imported by the runs that need it
+
+        return spatial.summarize(model, geometry, Xg, theta2_0, azimuth=azimuth, options=options, times=times,
+                                 capacity=capacity, progress=progress)
+    return summarize(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
+                     capacity=capacity, progress=progress)

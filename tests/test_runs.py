@@ -1,0 +1,78 @@
+"""The one driver of runs (dccss.mechanics.runs): planar or spatial by the ground motion's shape, the
+capacity and failure policies as events with a status and a message, for histories and sweeps alike."""
+
+import numpy as np
+import pytest
+
+from dccss.excitation import Sine, step_times
+from dccss.mechanics import runs, spatial, summaries
+from dccss.mechanics.capacity import CapacityError
+from dccss.mechanics.newton import ConvergenceError, NewtonOptions
+from dccss.paper.prototypes import DFP1
+
+#: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, the solver fails at 0.15 s
+BEYOND = Sine(0.9, 10.0, 1.0)
+TIMES = step_times(BEYOND, 0.01)
+X = BEYOND.displacement(TIMES)
+MOTIONS = {"planar": X, "spatial": np.stack([X, np.zeros_like(X)], axis=-1)}
+
+
+@pytest.mark.parametrize("motion", list(MOTIONS))
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_the_ground_motion_picks_the_models(motion, model):
+    small = MOTIONS[motion][:6] * 0.1
+    run = runs.history(model, DFP1, small, times=TIMES[:6])
+    assert run.motion == motion and run.status == "completed" and run.message == "" and run.steps == 6
+    assert run.reached is None and run.failure is None
+    expected = spatial.run(model, DFP1, small) if motion == "spatial" else None
+    if expected is not None:
+        assert all(np.array_equal(run.history[k], expected[k], equal_nan=True) for k in expected)
+
+
+def test_a_ground_motion_of_another_shape_is_refused():
+    with pytest.raises(ValueError, match=r"Xg must have shape \(T,\) or \(T, 2\), got \(3, 3\)"):
+        runs.history("compliant", DFP1, np.zeros((3, 3)))
+
+
+@pytest.mark.parametrize("motion", list(MOTIONS))
+def test_capacity_stop_is_a_terminal_event(motion):
+    run = runs.history("stick_slip", DFP1, MOTIONS[motion], capacity="stop", times=TIMES)
+    assert run.status == "stopped" and run.failure is None
+    # DFP1 is symmetric: both rings are passed at the same step, the deeper named
+    assert run.reached["t"] == pytest.approx(0.04) and run.reached["plate"] in ("RB1", "RB3")
+    assert run.steps == 5  # t_0 .. 0.04 s: the first step beyond the ring is the last one stored
+    assert f"reached the retaining ring of {run.reached['plate']} at t = 0.04 s" in run.message
+    assert "the run stopped there" in run.message
+
+
+@pytest.mark.parametrize("motion", list(MOTIONS))
+def test_capacity_error_and_a_failure_after_the_ring(motion):
+    with pytest.raises(CapacityError, match="retaining ring of RB[13] at t = 0.04 s.*lower it, or set capacity"):
+        runs.history("stick_slip", DFP1, MOTIONS[motion], capacity="error", times=TIMES)
+    with pytest.raises(ConvergenceError, match="Before the solver failed, the pad reached the retaining ring"):
+        runs.history("stick_slip", DFP1, MOTIONS[motion], times=TIMES)
+    run = runs.history("stick_slip", DFP1, MOTIONS[motion], on_failure="mark", times=TIMES)
+    assert run.status == "failed" and run.message == str(run.failure) and run.reached["t"] == pytest.approx(0.04)
+    assert 5 <= run.steps < len(TIMES)  # it failed after the ring
+
+
+@pytest.mark.parametrize("bad, message", [(dict(capacity="halt"), "capacity must be one of"),
+                                          (dict(on_failure="raise"), r"on_failure must be one of \('error', 'mark'\)"),
+                                          (dict(normals="unsigned"), "signed normals only")])
+def test_bad_policies_are_named(bad, message):
+    with pytest.raises(ValueError, match=message):
+        runs.history("compliant", DFP1, MOTIONS["spatial"][:3], **bad)
+
+
+def test_sweeps_go_to_the_planar_or_spatial_summaries():
+    planar = np.stack([X[:9], 0.5 * X[:9]], axis=1)
+    assert_same(runs.summaries("compliant", DFP1, planar, times=TIMES[:9]),
+                summaries.summarize("compliant", DFP1, planar, times=TIMES[:9]))
+    both = np.stack([MOTIONS["spatial"][:9], 0.5 * MOTIONS["spatial"][:9]], axis=1)
+    options = NewtonOptions(on_failure="mark")
+    assert_same(runs.summaries("stick_slip", DFP1, both, times=TIMES[:9], options=options, capacity="stop"),
+                spatial.summarize("stick_slip", DFP1, both, times=TIMES[:9], options=options, capacity="stop"))
+
+
+def assert_same(a, b):
+    assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k], equal_nan=True) for k in a)
