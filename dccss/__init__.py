@@ -18,16 +18,18 @@ Typical use::
 
 Layout (imports flow downwards only):
 
-* ``mechanics/`` - the model, numpy only: ``geometry``, ``kinematics``, ``constraints``,
-  ``newton``, ``models`` (the steppers and the registry of models), ``capacity`` (the retaining
-  rings), ``compiled`` (the same steppers compiled with Numba, optional), ``spatial`` (both models
-  in space, for bidirectional ground motion);
+* ``mechanics/`` - the model (nothing above it is imported): ``geometry``, ``kinematics``,
+  ``constraints``, ``newton``, ``models`` (the steppers and the registry of models), ``capacity``
+  (the retaining rings and their errors), ``summaries`` (the per-case reductions of a sweep),
+  ``compiled`` (the planar steppers compiled with Numba), ``backend`` (which of the two runs),
+  ``spatial`` (both models in space, for bidirectional ground motion, compiled) and ``runs`` (the
+  one driver: planar or spatial, the backend, the capacity and failure policies);
 * top level - one case in, one dataset out: ``excitation`` and ``records`` (X_g(t)), ``results``
-  (CF datasets), ``simulation``, ``checks``/``case``/``cli`` (input checks, case files, ``dccss
-  run``/``animate``), ``files`` (atomic writes), ``drawing`` (figures and the device to scale),
-  ``animation``, ``plan`` (plan view and sections of a history in space, ``dccss plot``);
-* ``studies/`` - study files: ``spec``, ``grid``, ``sweep`` (batched summaries), ``run``,
-  ``combine``, ``plots``;
+  (CF datasets), ``simulation``, ``checks``/``schema``/``case``/``cli`` (input checks, JSON Schemas,
+  case files, ``dccss run``/``animate``), ``files`` (atomic writes), ``drawing`` (figures and the
+  device to scale), ``viewer`` (what the drawing commands share), ``animation``, ``plan`` (plan view
+  and sections of a history in space, ``dccss plot``);
+* ``studies/`` - study files: ``spec``, ``grid``, ``run``, ``combine``, ``plots``;
 * ``paper/`` - what is specific to the paper: ``prototypes`` (Table 1), ``figures``, ``validation``.
 """
 

@@ -1,9 +1,11 @@
-"""The mechanics of the three-body model (numpy only; nothing here reads files or draws).
+"""The mechanics of the three-body model (nothing here reads files or draws, or imports what does).
 
 ``geometry`` (the Table 1 parameters and what follows from them), ``kinematics`` (bodies, corners
 and contact points), ``constraints`` (the constraint sets with their analytic Jacobians), ``newton``
 (one Newton-Raphson solver for every set), ``models`` (the time steppers, and the registry of
-models), ``capacity`` (the retaining rings), ``compiled`` (the same steppers compiled with Numba,
-where it is installed) and ``backend`` (which of the two runs: DCCSS_BACKEND, and the size of the
-run).
+models), ``capacity`` (the retaining rings and their errors), ``summaries`` (the per-case
+reductions of a sweep), ``compiled`` (the planar steppers compiled with Numba), ``backend`` (which
+of the two runs: DCCSS_BACKEND, and the size of the run), ``spatial`` (both models in space,
+compiled) and ``runs`` (the one driver of histories and sweeps: planar or spatial, the backend, the
+capacity and failure policies as events).
 """
