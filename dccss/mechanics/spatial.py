@@ -241,15 +241,16 @@ def C3(pose, dev):
     return axpy(pose.R3, dev.c3, Z)
 
 
-def start(geometry, Xg0, theta2_0=0.0, azimuth=0.0) -> Pose:
-    """The compatible configuration at t_0: RB1 at X_g(t_0) (2,), the pad tilted by theta^2(t_0)
-    (rad) in the vertical plane of ``azimuth`` (rad) as the planar model's Eq. 5 start."""
-    dev = device(geometry)
+@jit
+def start(dev, x, y, theta2_0, azimuth, R3z):
+    """The compatible configuration at t_0: RB1 at X_g(t_0) = (x, y), the pad tilted by theta^2(t_0)
+    (rad) in the vertical plane of ``azimuth`` (rad) as the planar model's Eq. 5 start, RB3 at height
+    R3z (``Geometry.Ry3_compatible(theta2_0)``)."""
     h = (math.cos(azimuth), math.sin(azimuth), 0.0)
-    R1 = (float(Xg0[0]), float(Xg0[1]), 0.0)
+    R1 = (x, y, 0.0)
     s, c = math.sin(theta2_0), math.cos(theta2_0)
     G = axpy(axpy(R1, dev.y21 * s, h), dev.c1 - dev.y21 * c, Z)
-    R3 = axpy(axpy(R1, dev.L * s, h), float(geometry.Ry3_compatible(theta2_0)), Z)
+    R3 = axpy(axpy(R1, dev.L * s, h), R3z, Z)
     return Pose(R1, G, rotation(scale(theta2_0, cross(h, Z))), R3)
 
 
@@ -636,13 +637,16 @@ def _store(out, n, pose, dev, m):
 
 
 @generic
-def _history(step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes, solver,
-             failure):
+def _history(step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
+             solver, failure):
     """All the steps of one case: rows of ``ends``, ``sticks`` (T, 24; ``_store``), ``planes`` (T, 6:
     e1, m) and ``solver`` (T, 4: iterations and residual of sticking, then of the step's last
-    phase). Returns the number of steps stored; a failed step fills ``failure`` (status, phase,
+    phase). Starts from ``start`` at X_g[0]; ``azimuth`` also gives the direction of a zero ground
+    increment. Returns the number of steps stored; a failed step fills ``failure`` (status, phase,
     then its six rows; status CONVERGED: none failed) and ends the history before it."""
     work = np.empty((6, 7))
+    pose = start(dev, Xg[0, 0], Xg[0, 1], theta2_0, azimuth, R3z)
+    reference = (math.cos(azimuth), math.sin(azimuth), 0.0)
     guide = (pose.R3[0], pose.R3[1])
     e1, m = step_plane(pose, dev, Xg[1, 0] - Xg[0, 0], Xg[1, 1] - Xg[0, 1], reference)
     for n in range(Xg.shape[0]):
@@ -671,19 +675,19 @@ def _history(step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ri
 
 
 @njit(cache=True, error_model="numpy")
-def compliant_history(dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes, solver,
-                      failure):
+def compliant_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
+                      solver, failure):
     """``_history`` of compliant sliding (arguments but the stepper as ``_history``'s)."""
-    return _history(compliant_step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
-                    planes, solver, failure)
+    return _history(compliant_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends,
+                    sticks, planes, solver, failure)
 
 
 @njit(cache=True, error_model="numpy")
-def stick_slip_history(dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
+def stick_slip_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
                        solver, failure):
     """``_history`` of stick-slip (arguments but the stepper as ``_history``'s)."""
-    return _history(stick_slip_step, dev, Xg, pose, reference, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
-                    planes, solver, failure)
+    return _history(stick_slip_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends,
+                    sticks, planes, solver, failure)
 
 
 #: the compiled history of each model of the registry (``models.REGISTRY``) that runs in space
@@ -736,10 +740,9 @@ def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(
     T = len(Xg)
     ends, sticks, planes = np.empty((T, 24)), np.empty((T, 24)), np.empty((T, 6))
     solver, failure = np.empty((T, 4)), np.zeros(8)
-    reference = (math.cos(azimuth), math.sin(azimuth), 0.0)
-    done = STEPPERS[name](dev, Xg, start(geometry, Xg[0], theta2_0, azimuth), reference, bool(in_plane),
-                    float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks, planes, solver,
-                    failure)
+    done = STEPPERS[name](dev, Xg, float(theta2_0), float(azimuth), float(geometry.Ry3_compatible(theta2_0)),
+                          bool(in_plane), float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks,
+                          planes, solver, failure)
     history = _unpack(ends[:done])
     history["e1"], history["m"] = planes[:done, :3], planes[:done, 3:]
     history["newton_iterations"] = solver[:done, 2].astype(np.int64)
