@@ -7,7 +7,7 @@ import xarray as xr
 from conftest import ROOT, changed
 
 from dccss.case import CaseError
-from dccss.mechanics import spatial
+from dccss.mechanics import runs
 from dccss.studies import Study, combine, history_case, run_chunk
 
 PAIR = {"kind": "record", "file": ["synthetic.AT2", "synthetic_y.AT2"], "window": [0.0, 3.0], "baseline": "linear"}
@@ -125,7 +125,7 @@ def test_spatial_sweep_capacity_policies_match_the_planar_sweep(capacity):
     g, X, t = _ring_batch()
     planar_x = np.hypot(X[..., 0], X[..., 1])
     mark = NewtonOptions(on_failure="mark")
-    ours = spatial.summarize("compliant", g, X, azimuth=np.radians(45.0), capacity=capacity, options=mark, times=t)
+    ours = runs.summaries("compliant", g, X, azimuth=np.radians(45.0), capacity=capacity, options=mark, times=t)
     theirs = summarize("compliant", g, planar_x, capacity=capacity, options=mark, times=t)
     for name in ("capacity_exceeded", "failed"):
         assert np.array_equal(ours[name], theirs[name]), name
@@ -134,7 +134,7 @@ def test_spatial_sweep_capacity_policies_match_the_planar_sweep(capacity):
     assert bool(ours["capacity_exceeded"][1] or ours["failed"][1]) and not ours["capacity_exceeded"][0]
     if capacity == "error":
         with pytest.raises(CapacityError, match=r"batch index \(1,\)"):
-            spatial.summarize("compliant", g, X, capacity=capacity, times=t)
+            runs.summaries("compliant", g, X, capacity=capacity, times=t)
 
 
 def test_spatial_sweep_marks_a_failed_case_and_goes_on():
@@ -143,9 +143,9 @@ def test_spatial_sweep_marks_a_failed_case_and_goes_on():
     g, X, t = _ring_batch()
     X = X.copy()
     X[50:, 1] += 0.8  # a jump no step can follow
-    out = spatial.summarize("stick_slip", g, X, options=NewtonOptions(on_failure="mark", max_iter=5), times=t)
+    out = runs.summaries("stick_slip", g, X, options=NewtonOptions(on_failure="mark", max_iter=5), times=t)
     assert list(out["failed"]) == [False, True] and out["failure_time"][1] == pytest.approx(0.5)
     assert np.isfinite(out["theta2_max_abs"][0]) and np.isnan(out["theta2_max_abs"][1])
     with pytest.raises(ConvergenceError) as err:
-        spatial.summarize("stick_slip", g, X, options=NewtonOptions(max_iter=5), times=t)
+        runs.summaries("stick_slip", g, X, options=NewtonOptions(max_iter=5), times=t)
     assert err.value.index == (1,)

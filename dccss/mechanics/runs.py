@@ -20,12 +20,13 @@ ring it reached and the failure; ``summaries`` the per-case summaries of a sweep
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from . import backend, models
-from .capacity import CAPACITY_POLICIES, capacity_message, history_error, ring_reached
+from .capacity import CAPACITY_POLICIES, capacity_message, case_error, history_error, mark_failures, ring_reached
+from .geometry import Geometry
 from .kinematics import NORMALS, corner_diagnostics
 from .newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
 from .summaries import summarize
@@ -181,13 +182,52 @@ def _explain(err, geometry, out, motion, times):
 
 def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed", options=NewtonOptions(),
               capacity="continue", times=None, progress=None) -> dict:
-    """Per-case summaries of a sweep: X_g (T, n) planar or (T, n, 2) spatial; geometry fields,
-    theta2_0 and (in space) ``azimuth`` broadcast over the cases. Policies as for ``history``, per
-    case (``options.on_failure``: "error" raises the first failure, "mark" marks it and goes on)."""
+    """Per-case summaries of a sweep (``summaries.SUMMARIES``): X_g (T, n) planar (or (T, ...) with
+    the cases broadcast) or (T, n, 2) spatial; geometry fields, theta2_0 and (in space) ``azimuth``
+    broadcast over the cases. Policies as for ``history``, per case (``options.on_failure``: "error"
+    raises the first failure, naming its case as the error's ``index``; "mark" marks it and goes on).
+    ``progress(n, N)`` is called after the cases' steps."""
     if np.ndim(Xg) == 3:
-        from . import spatial  # numba: imported by the runs that need it
-
-        return spatial.summarize(model, geometry, Xg, theta2_0, azimuth=azimuth, options=options, times=times,
-                                 capacity=capacity, progress=progress)
+        return _spatial_summaries(model, geometry, np.asarray(Xg, dtype=float), theta2_0, azimuth, options, capacity,
+                                  times, progress)
     return summarize(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
                      capacity=capacity, progress=progress)
+
+
+def _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity, times, progress):
+    """The spatial models case after case, each a ``history`` reduced by ``spatial.summary``."""
+    from . import spatial  # numba: imported by the runs that need it
+
+    check_policies(capacity, options.on_failure)
+    T, n = Xg.shape[:2]
+    now = np.arange(T, dtype=float) if times is None else np.asarray(times, dtype=float)
+    theta2_0 = np.broadcast_to(np.asarray(theta2_0, dtype=float), (n,))
+    azimuth = np.broadcast_to(np.asarray(azimuth, dtype=float), (n,))
+    mark = options.on_failure == "mark"
+    rows, failure, reached = [], np.full(n, np.nan), np.full(n, np.nan)
+    for k in range(n):
+        g = case_geometry(geometry, k, n)
+        try:  # capacity "error" stops the case at the ring: the sweep's own error names the case
+            run = history(model, g, Xg[:, k], float(theta2_0[k]), azimuth=float(azimuth[k]), options=options,
+                          capacity="continue" if capacity == "continue" else "stop", on_failure=options.on_failure,
+                          times=now)
+        except ConvergenceError as err:
+            err.index = (k,)
+            raise
+        if progress is not None:
+            progress(T - 1, T - 1)
+        if run.reached:
+            reached[k] = run.reached["t"]
+            if capacity == "error" and not mark:
+                raise case_error(reached[k], (k,))
+        if run.failure is not None:
+            failure[k] = now[run.steps]
+        rows.append(spatial.summary(run.history, g))
+    out = {key: np.array([row[key] for row in rows]) for key in rows[0]} if rows else {}
+    out["capacity_exceeded"] = ~np.isnan(reached)
+    return mark_failures(out, failure, reached, capacity)
+
+
+def case_geometry(geometry, k, n) -> Geometry:
+    """Case k of a batch of n devices (fields broadcast to (n,)) as a one-case Geometry."""
+    return Geometry(**{f.name: float(np.broadcast_to(getattr(geometry, f.name), (n,))[k]) for f in fields(geometry)})

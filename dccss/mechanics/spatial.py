@@ -811,80 +811,28 @@ def ring_passed(history) -> np.ndarray:
     return (history["clearance_1"] < 0) | (history["clearance_3"] < 0)
 
 
-# --- sweeps --------------------------------------------------------------------------------------
-def _case_geometry(geometry, k, n):
-    from dataclasses import fields
-
-    from .geometry import Geometry
-
-    return Geometry(**{f.name: float(np.broadcast_to(getattr(geometry, f.name), (n,))[k]) for f in fields(geometry)})
-
-
-def summarize(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, capacity="continue", progress=None,
-              options=NewtonOptions(), times=None) -> dict:
-    """Per-case summaries of a batch of bidirectional cases, with the keys and conventions of
-    ``dccss.mechanics.summaries.summarize`` (one compiled history after another).
-
-    Xg is (T, n, 2); geometry fields, theta2_0 and the reference azimuth (rad) broadcast to (n,).
-    Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is the largest tilt and
-    ``theta2_end`` the residual tilt (>= 0); the corners A, B, C, D are the trailing and leading
-    rim points of each step's section on RB1 and on RB3 (for motion along +x, the planar corners);
-    ``sticking_rotation_max`` is the largest angle the pad turns through in a sticking phase."""
-    from .capacity import CAPACITY_POLICIES, case_error, mark_failures
-
-    if model not in STEPPERS:
-        raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {model!r}")
-    if capacity not in CAPACITY_POLICIES:
-        raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
-    Xg = np.asarray(Xg, dtype=float)
-    if Xg.ndim != 3 or Xg.shape[-1] != 2:
-        raise ValueError(f"Xg must have shape (T, n, 2), got {Xg.shape}")
-    T, n = Xg.shape[:2]
-    now = np.asarray(times, dtype=float) if times is not None else np.arange(T, dtype=float)
-    theta2_0 = np.broadcast_to(np.asarray(theta2_0, dtype=float), (n,))
-    azimuth = np.broadcast_to(np.asarray(azimuth, dtype=float), (n,))
-    sticking = REGISTRY[model].sticking
-    keys = ["theta2_max_abs", "theta2_end", "rise_max", "rise_end", "clearance_min", "I_A_max", "I_B_max", "I_C_max",
-            "I_D_max", "newton_iterations_mean"] + (["sticking_rotation_max", "rise_stick_max"] if sticking else [])
-    out = {k: np.full(n, np.nan) for k in keys}
-    out["newton_iterations_max"] = np.zeros(n, dtype=np.int32)
-    failure, reached = np.full(n, np.nan), np.full(n, np.nan)
-    mark = options.on_failure == "mark"
-    for k in range(n):
-        g = _case_geometry(geometry, k, n)
-        try:
-            h = run(model, g, Xg[:, k], float(theta2_0[k]), azimuth=float(azimuth[k]), options=options, times=times,
-                    stop_at_ring=capacity != "continue")
-        except ConvergenceError as err:
-            if not mark:
-                err.index = (k,)
-                raise
-            h = err.history
-            failure[k] = now[0 if h is None else len(h["G"])]
-        if progress is not None:
-            progress(T - 1, T - 1)
-        if h is None:
-            continue
-        passed = np.flatnonzero(ring_passed(h))
-        if passed.size:
-            reached[k] = now[passed[0]]
-            if capacity == "error" and not mark:
-                raise case_error(reached[k], (k,))
-        d = diagnostics(h, g)
-        tilt_deg = np.degrees(d["tilt"])
-        steps = len(tilt_deg)
-        out["theta2_max_abs"][k], out["theta2_end"][k] = tilt_deg.max(), tilt_deg[-1]
-        out["rise_max"][k], out["rise_end"][k] = d["rise"].max(), d["rise"][-1]
-        out["clearance_min"][k] = min(d["clearance_1"].min(), d["clearance_3"].min())
-        for i, c in enumerate("ABCD"):
-            out[f"I_{c}_max"][k] = np.nanmax(d["interpenetration"][1:, i]) if steps > 1 else np.nan
-        its = h["newton_iterations"] + h.get("newton_iterations_stick", 0)
-        out["newton_iterations_max"][k] = its.max()
-        out["newton_iterations_mean"][k] = its.sum() / max(steps - 1, 1)
-        if sticking and steps > 1:
-            relative = np.einsum("tij,tkj->tik", h["stick_Q"][1:], h["Q"][:-1])
+# --- what a sweep keeps of a history --------------------------------------------------------------
+def summary(history, geometry) -> dict:
+    """The per-case summaries of a history (``dccss.mechanics.summaries.SUMMARIES``; ``runs.summaries``
+    applies the run policies). Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is
+    the largest tilt and ``theta2_end`` the residual tilt (>= 0); the corners A, B, C, D are the
+    trailing and leading rim points of each step's section on RB1 and on RB3 (for motion along +x,
+    the planar corners); ``sticking_rotation_max`` is the largest angle the pad turns through in a
+    sticking phase."""
+    d = diagnostics(history, geometry)
+    tilt_deg = np.degrees(d["tilt"])
+    steps = len(tilt_deg)
+    its = history["newton_iterations"] + history.get("newton_iterations_stick", 0)
+    out = {"theta2_max_abs": tilt_deg.max(), "theta2_end": tilt_deg[-1], "rise_max": d["rise"].max(),
+           "rise_end": d["rise"][-1], "clearance_min": min(d["clearance_1"].min(), d["clearance_3"].min()),
+           **{f"I_{c}_max": np.nanmax(d["interpenetration"][1:, i]) if steps > 1 else np.nan
+              for i, c in enumerate("ABCD")},
+           "newton_iterations_max": np.int32(its.max()), "newton_iterations_mean": its.sum() / max(steps - 1, 1)}
+    if "stick_Q" in history:
+        turn = np.full(1, np.nan)
+        if steps > 1:
+            relative = np.einsum("tij,tkj->tik", history["stick_Q"][1:], history["Q"][:-1])
             turn = np.arccos(np.clip(0.5 * (np.trace(relative, axis1=1, axis2=2) - 1.0), -1.0, 1.0))
-            out["sticking_rotation_max"][k] = np.degrees(turn.max())
-            out["rise_stick_max"][k] = np.nanmax(h["stick_R3"][1:, 2] - device(g).rest3)
-    out["capacity_exceeded"] = ~np.isnan(reached)
-    return mark_failures(out, failure, reached, capacity)
+        out["sticking_rotation_max"] = np.degrees(turn.max())
+        out["rise_stick_max"] = np.nanmax(history["stick_R3"][1:, 2] - device(geometry).rest3) if steps > 1 else np.nan
+    return out
