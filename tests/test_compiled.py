@@ -1,4 +1,4 @@
-"""The compiled backend (mechanics.compiled) against the numpy reference (mechanics.models, studies.sweep).
+"""The compiled backend (mechanics.compiled) against the numpy reference (mechanics.models, mechanics.summaries).
 
 Same keys, dtypes and shapes; lengths (m) and angles (rad; degrees in summaries) to 1e-10;
 Newton iteration counts, flags, failures and capacity times identical; the same errors. On the

@@ -66,7 +66,7 @@ import numpy as np
 try:
     import numba
     from numba import njit, prange
-except ImportError as err:  # an optional dependency
+except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs numpy
     raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
 
 from . import newton
