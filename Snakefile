@@ -2,6 +2,8 @@
 #     snakemake --profile profiles/default
 # or run a new study through the same library:
 #     snakemake --profile profiles/default --configfile config/studies/<name>.yaml
+from importlib.resources import files
+
 from snakemake.utils import validate
 
 
@@ -17,7 +19,7 @@ if "study" in config:
 
     include: "workflow/rules/study_common.smk"  # checks every key and sweep point, with clear messages
 
-    validate(config, "workflow/schemas/study.schema.yaml")
+    validate(config, str(files("dccss") / "schemas" / "study.schema.yaml"))  # the library's own schema
 
     include: "workflow/rules/study.smk"
 

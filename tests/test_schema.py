@@ -66,3 +66,39 @@ def test_errors_come_in_the_order_of_the_file(tmp_path):
     assert lines[0].startswith("paper value 'a': unit 'degrees' is not one of ['m', 'cm'")
     assert lines[-1].startswith("paper value 'c': relation 'x' is not one of")
     assert not any(line.startswith("paper value 'b'") for line in lines)
+
+
+# --- the study file --------------------------------------------------------------------------------
+def study(**changes):
+    config = yaml.safe_load((ROOT / "config/studies/pad_shape.yaml").read_text())
+    return {**config, **changes}
+
+
+@pytest.mark.parametrize("name", ["pad_shape", "ground_motion", "dt_convergence", "bidirectional"])
+def test_the_shipped_studies_follow_the_schema(name):
+    assert schema.errors("study", yaml.safe_load((ROOT / f"config/studies/{name}.yaml").read_text())) == []
+
+
+@pytest.mark.parametrize("changes, message", [
+    (dict(study={"name": "x", "description": 3}), "study.description 3 is not a string"),
+    (dict(models=["compliant", "compliant"]), "models ['compliant', 'compliant'] has non-unique elements"),
+])
+def test_a_study_the_python_checks_pass_is_still_held_to_its_schema(changes, message):
+    from dccss.studies import Study, StudyError
+
+    with pytest.raises(StudyError) as err:
+        Study.from_config(study(**changes), ROOT / "config/studies")
+    assert str(err.value) == message
+
+
+def test_the_study_schema_and_the_library_agree_on_the_vocabularies():
+    from dccss.mechanics.capacity import CAPACITY_POLICIES
+    from dccss.mechanics.kinematics import NORMALS
+    from dccss.mechanics.newton import FAILURE_POLICIES
+    from dccss.studies import spec
+
+    props = schema.schema("study")["properties"]
+    assert tuple(props["normals"]["enum"]) == NORMALS
+    assert tuple(props["capacity"]["enum"]) == CAPACITY_POLICIES
+    assert set(props["on_failure"]["enum"]) == set(FAILURE_POLICIES)
+    assert spec.KEYS == set(props) and spec.REQUIRED == tuple(schema.schema("study")["required"])

@@ -10,7 +10,7 @@ In four parts, in the order a workflow uses them:
    (``run_chunk``), and the chosen cases run in full (``history_mapping``, ``history_case``).
 4. ``combine``: the chunks of every model in one dataset with a dimension per sweep axis.
 
-A study file (schema: ``workflow/schemas/study.schema.yaml``)::
+A study file (schema: ``dccss/schemas/study.schema.yaml``, which the workflow applies too)::
 
     study: {name: pad_shape, description: "..."}
     prototypes: {MyBearing: {R1: ..., ...}}   # optional: devices of your own (13 parameters each)

@@ -17,6 +17,8 @@ from ..mechanics.kinematics import NORMALS
 from ..mechanics.models import MODELS
 from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from ..paper.prototypes import TABLE1
+from ..schema import errors as schema_errors
+from ..schema import schema
 from .grid import PLATE3_FOLLOWS, Grid
 
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
@@ -26,9 +28,10 @@ EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "component")
 AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + ("theta2_0", "dt")
 #: sweep axes whose values are names, not numbers
 CATEGORICAL = ("prototype", "component")
-KEYS = {"study", "prototypes", "prototype", "symmetric", "excitation", "theta2_0", "dt", "models", "normals", "sweep",
-        "chunk_size", "marks", "histories", "newton", "on_failure", "capacity", "animate"}
-REQUIRED = ("study", "prototype", "excitation", "models", "sweep")
+#: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
+#: checks a study against as well
+KEYS = set(schema("study")["properties"])
+REQUIRED = tuple(schema("study")["required"])
 #: the keys that only the plots and the histories read: the sweep's results do not depend on them
 NOT_SWEPT = ("marks", "histories", "animate")
 #: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log)
@@ -146,6 +149,10 @@ class Study:
             histories = [study.grid.point(i) for i in range(study.grid.n_cases)]
         study.histories = _histories(histories, axes, dt)
         study.animate = _animations(config.get("animate", []), study.histories, axes)
+        # the checks above word each error best; the schema, which the workflow applies too, has the last word
+        problems = schema_errors("study", config)
+        if problems:
+            raise StudyError("; ".join(p.message for p in problems))
         return study
 
 
