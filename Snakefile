@@ -25,7 +25,7 @@ if "study" in config:
 
 else:
 
-    validate(config, "workflow/schemas/config.schema.yaml")
+    validate(config, str(files("dccss") / "schemas" / "config.schema.yaml"))
 
     include: "workflow/rules/common.smk"
     include: "workflow/rules/simulate.smk"

@@ -56,14 +56,19 @@ from .mechanics.kinematics import NORMALS
 from .mechanics.models import MODELS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .paper.prototypes import TABLE1
+from .schema import errors as schema_errors
+from .schema import schema
 from .simulation import simulate
 
-REQUIRED = ("prototype", "excitation", "dt", "model")
-OPTIONAL = {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None, "capacity": "continue",
-            "on_failure": "error"}
-EXCITATION_KEYS = {"sine": ("amplitude", "omega", "duration"), "table": ("file",), "record": ("file",)}
-EXCITATION_OPTIONAL = {"sine": ("scale", "azimuth"), "table": ("scale", "azimuth", "component"),
-                       "record": ("scale", "window", "baseline", "units", "azimuth", "component")}
+#: a case file's keys, the defaults of the optional ones and each excitation kind's keys: the schema
+#: dccss/schemas/case.schema.yaml, which every case is also held to
+SCHEMA = schema("case")
+REQUIRED = tuple(SCHEMA["required"])
+OPTIONAL = {k: spec.get("default") for k, spec in SCHEMA["properties"].items() if k not in REQUIRED}
+EXCITATION_KEYS = {kind: tuple(k for k in SCHEMA["$defs"][kind]["required"] if k != "kind")
+                   for kind in SCHEMA["properties"]["excitation"]["properties"]["kind"]["enum"]}
+EXCITATION_OPTIONAL = {kind: tuple(k for k in SCHEMA["$defs"][kind]["properties"] if k not in ("kind", *keys))
+                       for kind, keys in EXCITATION_KEYS.items()}
 
 
 def geometry_from(value, key="prototype") -> Geometry:
@@ -230,13 +235,18 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     geometry = geometry_from(m["prototype"])
     excitation = excitation_from(m["excitation"], base, geometry)
     dt = check_step(m["dt"], excitation, "dt")
-    return Case(geometry=geometry, excitation=excitation, dt=dt,
+    case = Case(geometry=geometry, excitation=excitation, dt=dt,
                 model=choice(m["model"], "model", MODELS),
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
                 normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
                 parameters_hash=parameters_hash(mapping),
                 capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
                 on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES))
+    # the checks above word each error best; the schema has the last word
+    problems = schema_errors("case", mapping)
+    if problems:
+        raise CaseError("; ".join(p.message for p in problems))
+    return case
 
 
 def load_case(path) -> Case:

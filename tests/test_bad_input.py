@@ -129,10 +129,15 @@ def _bad_geometry(config):
     config["prototypes"]["DFP1"] = {**TABLE1["DFP1"], "alpha21": 25.0}
 
 
+def _unknown_model(config):
+    config["models"] = ["compliant", "rolling"]
+
+
 WORKFLOW_ROWS = [
     ("paper config unknown key", _paper, "colour"),
     ("paper config unknown case set", _unknown_case_set, "figures.case_set: unknown case set 'as_imagined'"),
     ("paper config unknown prototype", _unknown_prototype, "unknown prototype 'DFP9'"),
+    ("paper config unknown model", _unknown_model, "models[1]: unknown model 'rolling'; registered:"),
     ("paper config negative dt", _negative_dt, "-0.01"),
     ("paper config impossible geometry", _bad_geometry, "prototypes.DFP1: geometry parameter 'alpha21'"),
 ]

@@ -102,3 +102,44 @@ def test_the_study_schema_and_the_library_agree_on_the_vocabularies():
     assert tuple(props["capacity"]["enum"]) == CAPACITY_POLICIES
     assert set(props["on_failure"]["enum"]) == set(FAILURE_POLICIES)
     assert spec.KEYS == set(props) and spec.REQUIRED == tuple(schema.schema("study")["required"])
+
+
+# --- the case file ----------------------------------------------------------------------------------
+CASE = {"prototype": "DFP1", "excitation": {"kind": "sine", "amplitude": 0.19, "omega": 30.0, "duration": 0.2},
+        "dt": 0.01, "model": "stick_slip"}
+
+
+def test_the_case_keys_and_defaults_come_from_the_schema():
+    from dccss import case
+
+    assert case.REQUIRED == ("prototype", "excitation", "dt", "model")
+    assert case.OPTIONAL == {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None,
+                             "capacity": "continue", "on_failure": "error"}
+    assert case.EXCITATION_KEYS["record"] == ("file",)
+    assert case.EXCITATION_OPTIONAL["record"] == ("scale", "window", "baseline", "units", "azimuth", "component")
+    assert schema.errors("case", CASE) == []
+
+
+@pytest.mark.parametrize("changes", [
+    {"model": None}, {"colour": "red"}, {"dt": [0.01]}, {"dt": "1e-3"}, {"dt": 0.0}, {"capacity": "halt"},
+    {"on_failure": "stop"}, {"newton": {"tol": 1e-12, "iterations": 3}}, {"excitation": {"kind": "sine", "omega": 1.0}},
+    {"excitation": {"kind": "record", "file": "a.AT2", "baseline": "cubic"}},
+    {"excitation": {"kind": "table", "file": "a.csv", "window": [0, 1]}},
+])
+def test_the_schema_refuses_what_the_case_checks_refuse(changes):
+    """Both statements of the structure agree: a structural mistake the Python checks name is one the
+    schema finds too (the Python checks answer first, with the better words)."""
+    from dccss.case import CaseError, case_from
+
+    bad = {k: v for k, v in {**CASE, **changes}.items() if v is not None}
+    assert schema.errors("case", bad)
+    with pytest.raises(CaseError):
+        case_from(bad)
+
+
+def test_the_paper_config_follows_its_schema_and_the_library_agrees():
+    from dccss.mechanics.kinematics import NORMALS
+
+    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+    assert schema.errors("config", config) == []
+    assert tuple(schema.schema("config")["$defs"]["normals"]["enum"]) == NORMALS

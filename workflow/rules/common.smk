@@ -4,6 +4,7 @@ import re
 from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError, geometry_from
+from dccss.mechanics.models import MODELS
 from dccss.paper.specs import Runs, SpecError, figure_specs
 
 
@@ -27,7 +28,8 @@ def check_config():
     figure asking for a time step, model, prototype, ground step or variant that is not run is
     such a mistake (figures are neither skipped nor adapted).
     """
-    errors = [*prototype_errors(), *case_set_errors(), *dt_errors(), *breakaway_errors(), *animation_errors()]
+    errors = [*model_errors(), *prototype_errors(), *case_set_errors(), *dt_errors(), *breakaway_errors(),
+              *animation_errors()]
     specs = {}
     try:
         specs = figure_specs(config.get("figures") or {}, runs())
@@ -36,6 +38,12 @@ def check_config():
     if errors:
         raise WorkflowError("\n".join(f"config: {e}" for e in errors))
     return specs
+
+
+def model_errors():
+    for i, model in enumerate(config["models"]):
+        if model not in MODELS:
+            yield f"models[{i}]: unknown model {model!r}; registered: {list(MODELS)}"
 
 
 def prototype_errors():
