@@ -75,6 +75,7 @@ from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
 from .newton import NewtonOptions
+from .scalar import OPTIONS, jit, max_abs
 
 # --- names ---------------------------------------------------------------------------------
 CORNER_A, CORNER_B, CORNER_C, CORNER_D = 0, 1, 2, 3
@@ -100,10 +101,6 @@ DEGREES = 180.0 / np.pi  # numpy's degrees(x) is x * (180 / pi)
 TWO_PI = 2 * np.pi
 NAN = np.nan
 
-#: IEEE semantics for a division by zero (as numpy), no Python-style checks in the loops
-OPTIONS = dict(cache=True, error_model="numpy")
-#: the helpers, inlined by LLVM into the per-case loops
-jit = njit(forceinline=True, **OPTIONS)
 
 
 # --- configurations as 9-tuples (Eq. 4) ----------------------------------------------------
@@ -293,19 +290,6 @@ def _rows(kind, F, cset):
 
 # --- Newton-Raphson (newton.py) ------------------------------------------------------------
 @jit
-def _max_abs(g):
-    """max |g_i|, NaN if any is NaN."""
-    m = 0.0
-    for v in g:
-        a = abs(v)
-        if a != a:
-            return NAN
-        if a > m:
-            m = a
-    return m
-
-
-@jit
 def _pivot(column):
     """Partial pivoting: the index of the largest |entry| of a column (the first on ties, as
     LAPACK's idamax)."""
@@ -384,7 +368,7 @@ def _newton(kind, q, cset, tol, max_iter):
     g, J = _rows(kind, F, cset)
     it = 0
     while True:
-        norm = _max_abs(g)
+        norm = max_abs(g)
         if norm <= tol:
             return CONVERGED, it, norm, q, g, J, F
         if it == max_iter:

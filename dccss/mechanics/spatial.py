@@ -62,6 +62,7 @@ from numba import njit
 
 from .models import REGISTRY
 from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
+from .scalar import OPTIONS, jit, max_abs
 
 Z = (0.0, 0.0, 1.0)
 #: the section's rim points, in the order of the step's rows: lower trailing, lower leading,
@@ -83,12 +84,10 @@ LABELS = (
      "axis in the slip plane: C^23 with C^3", "RB3 held at Eq. 41 (a unit row)"),
 )
 
-#: IEEE semantics for a division by zero (as numpy); kernels cached on disk; helpers inlined
-jit = njit(cache=True, error_model="numpy", forceinline=True)
-#: the same for the generic functions that take a compiled function as an argument (``newton``'s
+#: the same as ``scalar.jit`` for the generic functions that take a compiled function as an argument (``newton``'s
 #: rows, ``_history``'s stepper): numba cannot cache those (a function type does not survive on
 #: disk), so they are compiled into the cached kernels that call them
-generic = njit(error_model="numpy", forceinline=True)
+generic = njit(error_model=OPTIONS["error_model"], forceinline=True)
 
 
 # --- vectors (3-tuples) and rotations (tuples of columns) ----------------------------------------
@@ -361,6 +360,13 @@ def compliant_phase(dev, pose, R1, m, up):
 
 
 @jit
+def unknowns(phase, x):
+    """G^2 and Q at x = (G^2, w_1, w_2, ...), with the axes c_1, c_2 of dQ/dw_j (``orientation``)."""
+    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    return (x[0], x[1], x[2]), Q, c1, c2
+
+
+@jit
 def compliant_R3(phase, x):
     return axpy(phase.R3_base, x[5], phase.up)
 
@@ -369,8 +375,7 @@ def compliant_R3(phase, x):
 def compliant_rows(phase, x):
     """Rows g (6) and dg/dx (6 x 6) of compliant sliding at x = (G^2, w_1, w_2, R^3_z)."""
     dev, m = phase.dev, phase.m
-    G = (x[0], x[1], x[2])
-    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    G, Q, c1, c2 = unknowns(phase, x)
     a = Q[2]
     w = cross(a, m)
     nw = norm(w)
@@ -420,8 +425,7 @@ def sticking_phase(dev, pose, R1, guide, v1, v3):
 @jit
 def sticking_rows(phase, x):
     """Rows g (6) and dg/dx (6 x 6) of sticking at x = (G^2, w_1, w_2, R^3_z)."""
-    G = (x[0], x[1], x[2])
-    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    G, Q, c1, c2 = unknowns(phase, x)
     r1, r3 = apply(Q, phase.v1), apply(Q, phase.v3)
     R3 = (phase.guide[0], phase.guide[1], x[5])
     h1 = sub(add(G, r1), phase.target1)
@@ -459,8 +463,7 @@ def slipping_phase(dev, stick, e1, v1, v3):
 def slipping_rows(phase, x):
     """Rows g (6) and dg/dx (6 x 6) of slipping at x = (G^2, w_1, w_2, x_6): five rows, and x_6 = 0."""
     dev, ms = phase.dev, phase.ms
-    G = (x[0], x[1], x[2])
-    Q, c1, c2 = orientation(phase.Q_ref, phase.k1, phase.k2, x[3], x[4])
+    G, Q, c1, c2 = unknowns(phase, x)
     a = Q[2]
 
     def tangent(v, point, normal):
@@ -489,19 +492,6 @@ def slipping_pose(phase, x):
 
 
 # --- Newton-Raphson ------------------------------------------------------------------------------
-@jit
-def max_abs(g):
-    """max |g_i|, NaN if any is NaN."""
-    m = 0.0
-    for v in g:
-        a = abs(v)
-        if a != a:
-            return math.nan
-        if a > m:
-            m = a
-    return m
-
-
 @jit
 def solve6(J, g, work):
     """Solve J x = g (6 x 6, rows as tuples) by Gaussian elimination with partial pivoting in the
@@ -674,7 +664,7 @@ def _history(step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, sto
     return Xg.shape[0]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(**OPTIONS)
 def compliant_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
                       solver, failure):
     """``_history`` of compliant sliding (arguments but the stepper as ``_history``'s)."""
@@ -682,7 +672,7 @@ def compliant_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, 
                     sticks, planes, solver, failure)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(**OPTIONS)
 def stick_slip_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
                        solver, failure):
     """``_history`` of stick-slip (arguments but the stepper as ``_history``'s)."""
@@ -804,11 +794,6 @@ def diagnostics(history, geometry, prefix="") -> dict:
     for key in ("interpenetration", "clearance_1", "clearance_3"):
         out[key] = history[prefix + key]
     return out
-
-
-def ring_passed(history) -> np.ndarray:
-    """Per step: whether the pad is beyond a retaining ring."""
-    return (history["clearance_1"] < 0) | (history["clearance_3"] < 0)
 
 
 # --- what a sweep keeps of a history --------------------------------------------------------------
