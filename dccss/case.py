@@ -36,6 +36,11 @@ Format (lengths in m, angles in degrees, times in s)::
     on_failure: error      # optional: a solver failure stops with an error (default), or mark: the
                            # history is written up to the failure and marked (failed, failure_time_s)
     id: my-case            # optional, recorded in the dataset
+    structure: {friction: 0.05, damping: 0.0}
+                           # optional: a rigid superstructure on the device, driven by the ground's
+                           # acceleration (dccss.mechanics.structure): the device undergoes its stroke
+                           # (RB1 moves by minus the stroke relative to RB3); without it, the ground
+                           # displacement itself is imposed, the superstructure held still in space
 """
 
 from __future__ import annotations
@@ -55,6 +60,7 @@ from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.models import MODELS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
+from .mechanics.structure import Structure, StructureError
 from .paper.prototypes import TABLE1
 from .schema import errors as schema_errors
 from .schema import schema
@@ -198,13 +204,15 @@ class Case:
     parameters_hash: str | None = None
     capacity: str = "continue"
     on_failure: str = "error"
+    structure: Structure | None = None
 
     def run(self, progress=None):
         """Simulate the case: an xarray.Dataset (``progress(n, N)`` is called after each step)."""
         attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
-                        capacity=self.capacity, on_failure=self.on_failure, attrs=attrs, progress=progress)
+                        capacity=self.capacity, on_failure=self.on_failure, attrs=attrs, progress=progress,
+                        structure=self.structure)
 
 
 def newton_from(value, key="newton") -> NewtonOptions:
@@ -218,6 +226,23 @@ def newton_from(value, key="newton") -> NewtonOptions:
     if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
         raise CaseError(f"{key}.max_iter: expected an integer >= 1, got {max_iter!r}")
     return NewtonOptions(tol=tol, max_iter=max_iter)
+
+
+#: the keys of ``structure`` and the defaults of the optional ones
+STRUCTURE = SCHEMA["$defs"]["structure"]
+STRUCTURE_OPTIONAL = {k: v["default"] for k, v in STRUCTURE["properties"].items() if k not in STRUCTURE["required"]}
+
+
+def structure_from(value, key="structure") -> Structure | None:
+    """A Structure from its mapping {friction, damping} (None stays None); errors name the key."""
+    if value is None:
+        return None
+    check_keys(value, key, tuple(STRUCTURE["required"]), STRUCTURE_OPTIONAL)
+    value = {**STRUCTURE_OPTIONAL, **value}
+    try:
+        return Structure(*(number(value[k], f"{key}.{k}") for k in ("friction", "damping")))
+    except StructureError as err:
+        raise CaseError(str(err).replace("structure.", f"{key}.", 1)) from None
 
 
 def parameters_hash(mapping) -> str:
@@ -241,7 +266,8 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
                 parameters_hash=parameters_hash(mapping),
                 capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
-                on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES))
+                on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES),
+                structure=structure_from(m["structure"]))
     # the checks above word each error best; the schema has the last word
     problems = schema_errors("case", mapping)
     if problems:

@@ -25,6 +25,25 @@ from .mechanics.newton import ConvergenceError
 
 
 def _summary(ds) -> str:
+    return _kinematics(ds) + (_structure(ds) if "structure_friction" in ds.attrs else "")
+
+
+def _structure(ds) -> str:
+    """Peak and residual stroke and peak F/W of a structure-driven history."""
+    two = "stroke_x" in ds
+    if two:
+        stroke = np.hypot(ds["stroke_x"].values, ds["stroke_y"].values)
+        force = np.hypot(ds["shear_ratio_x"].values, ds["shear_ratio_y"].values)
+        residual = f"{100 * stroke[-1]:.3f} cm"
+    else:
+        stroke, force = np.abs(ds["stroke"].values), np.abs(ds["shear_ratio"].values)
+        residual = f"{100 * float(ds['stroke'].values[-1]):+.3f} cm"
+    return (f"; structure (mu = {ds.attrs['structure_friction']:g}, zeta = {ds.attrs['structure_damping']:g}, "
+            f"T = {ds.attrs['structure_period_s']:.3g} s): peak |u| = {100 * np.max(stroke):.3f} cm, "
+            f"residual stroke = {residual}, peak |F/W| = {np.max(force):.4f}")
+
+
+def _kinematics(ds) -> str:
     if ds.attrs.get("motion") == "bidirectional":
         interp = max(float(np.nanmax(np.abs(ds[name].values))) for name in ds if name.startswith("I_"))
         return (f"{ds.attrs['model']}, bidirectional, {ds.sizes['t'] - 1} steps: max tilt = "
@@ -120,7 +139,7 @@ def main(argv=None) -> int:
     for line in warnings_of(ds):
         print(f"dccss: warning: {line}", file=sys.stderr)
     if not args.quiet:
-        used = "numpy: the spatial models have no compiled kernels" if ds.attrs.get("motion") == "bidirectional" \
+        used = "numba: the spatial models are compiled" if ds.attrs.get("motion") == "bidirectional" \
             else backend.last
         print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s (backend {used})")
     return 0

@@ -113,7 +113,8 @@ import numpy as np
 from numpy.polynomial import Polynomial
 from scipy.integrate import cumulative_trapezoid
 
-G = 9.80665  # standard gravity (m/s²)
+from .mechanics.structure import G, Ground  # G: standard gravity (m/s²)
+
 BASELINES = {"none": None, "linear": 1, "quadratic": 2}  # degree of the velocity trend removed
 MIN_SAMPLES = 3
 PGA_PLAUSIBLE_G = (0.001, 5.0)  # a peak ground acceleration outside this range (g) is reported
@@ -783,6 +784,10 @@ class Record:
         """dX_g/dt (m/s) at times t (s), linearly interpolated."""
         return np.interp(t, self.time, self.velocity_samples)
 
+    def ground_acceleration(self) -> Ground:
+        """The processed acceleration samples joined by straight lines (what drives a structure)."""
+        return Ground.from_samples(self.time, self.acceleration)
+
     def attrs(self) -> dict:
         """netCDF global attributes (str, int, float) describing the record and its processing;
         ``record_warning`` only when there is a warning."""
@@ -906,6 +911,10 @@ class RecordPair:
     def velocity(self, t):
         """(x, y) ground velocity (m/s) at times t (s): shape t.shape + (2,)."""
         return np.stack([self.x.velocity(t), self.y.velocity(t)], axis=-1)
+
+    def ground_acceleration(self) -> Ground:
+        """Both components' processed acceleration samples joined by straight lines."""
+        return Ground.from_samples(self.time, np.column_stack([self.x.acceleration, self.y.acceleration]))
 
     def attrs(self) -> dict:
         """netCDF global attributes: the pair, and each component's :meth:`Record.attrs` with its

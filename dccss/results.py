@@ -233,6 +233,41 @@ def spatial_dataset(model, history, geometry, times, excitation, *, theta2_0, dt
     return ds
 
 
+def structure_variables(response, components, steps) -> dict:
+    """The isolated structure's variables (``mechanics.structure.Response``) of the first ``steps``
+    steps: stroke, its velocity, F/W and z (``_x``, ``_y`` for two components) and the sticking flag."""
+    t = (TIME,)
+    out = {}
+    table = (("stroke", response.stroke, "m", "stroke u: displacement of the superstructure relative to the ground"),
+             ("stroke_velocity", response.velocity, "m s-1", "stroke velocity du/dt"),
+             ("shear_ratio", response.shear_ratio, "1", "device force over the supported weight F/W"),
+             ("z", response.z, "1", "friction state z of the device (|z| <= 1; du/dt over |du/dt| while sliding)"))
+    for name, values, units, long_name in table:
+        if components == 1:
+            out[name] = variable(t, values[:steps, 0], units, long_name)
+        else:
+            for i, axis in enumerate("xy"):
+                out[f"{name}_{axis}"] = variable(t, values[:steps, i], units, f"{long_name}, {axis} component")
+    out["structure_sticking"] = variable(
+        t, response.sticking[:steps].astype(np.int8), "1", "the superstructure sticks on the device (du/dt = 0)",
+        flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="sliding sticking")
+    return out
+
+
+def has_structure(ds) -> bool:
+    """Whether a dccss dataset holds a history driven by an isolated structure (a stroke)."""
+    return "structure_friction" in ds.attrs
+
+
+def imposed(ds) -> np.ndarray:
+    """The motion imposed on RB1 relative to RB3 (m): the ground displacement, or minus the stroke
+    of a structure; (T,) for one component, (T, 2) for two."""
+    two = is_bidirectional(ds)
+    if has_structure(ds):
+        return 0.0 - (np.stack([ds["stroke_x"].values, ds["stroke_y"].values], axis=-1) if two else ds["stroke"].values)
+    return np.stack([ds["Xg_x"].values, ds["Xg_y"].values], axis=-1) if two else ds["Xg"].values
+
+
 def is_bidirectional(ds) -> bool:
     """Whether a dccss dataset holds a bidirectional (spatial) history."""
     return ds.attrs.get("motion") == "bidirectional"

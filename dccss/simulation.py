@@ -9,12 +9,13 @@ import xarray as xr
 from .excitation import step_times
 from .mechanics import models, runs
 from .mechanics.newton import NewtonOptions
-from .results import breakaway_dataset, history_dataset, spatial_dataset
+from .mechanics.structure import Structure, respond
+from .results import breakaway_dataset, history_dataset, spatial_dataset, structure_variables
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
              options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="error",
-             attrs: dict | None = None, progress=None) -> xr.Dataset:
+             attrs: dict | None = None, progress=None, structure: Structure | None = None) -> xr.Dataset:
     """Run one case and return its dataset.
 
     Parameters
@@ -38,12 +39,25 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     attrs : extra global attributes (e.g. a case id).
     progress : optional callable ``progress(n, N)`` called after each step n of N (once, when the
         history is done, where compiled kernels run it: long planar runs and every spatial run).
+    structure : a ``mechanics.structure.Structure`` (friction μ, damping ζ) on the device, or None.
+        None: the ground displacement is imposed on RB1 relative to RB3, the superstructure held
+        still in space. A structure: the excitation's ground acceleration drives the superstructure
+        (``mechanics.structure``), and its stroke u (the superstructure relative to the ground) is
+        what the device undergoes: RB1 moves by -u relative to RB3. The dataset keeps the ground
+        motion (``Xg``) beside the stroke, its velocity, the force ratio F/W, the friction state z
+        and whether the structure sticks (``results.structure_variables``).
 
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
     times = step_times(excitation, dt)
-    run = runs.history(model, geometry, excitation.displacement(times), theta2_0,
+    response = None
+    if structure is None:
+        imposed = excitation.displacement(times)
+    else:
+        response = respond(excitation.ground_acceleration(), times, geometry.L, structure)
+        imposed = 0.0 - (response.stroke[:, 0] if excitation.components == 1 else response.stroke)
+    run = runs.history(model, geometry, imposed, theta2_0,
                        azimuth=float(getattr(excitation, "azimuth", 0.0)), normals=normals, options=options,
                        capacity=capacity, on_failure=on_failure, times=times, progress=progress)
     if run.motion == "spatial":
@@ -52,6 +66,11 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     else:
         ds = history_dataset(model, run.history, geometry, times[:run.steps], excitation, theta2_0=theta2_0, dt=dt,
                              normals=normals, tol=options.tol, attrs=attrs)
+    if response is not None:
+        ds = ds.assign(structure_variables(response, excitation.components, run.steps))
+        ds.attrs.update(structure.attrs(geometry.L))
+        ds.attrs["imposed_motion"] = ("minus the stroke: RB1 relative to RB3 is -u, u the superstructure's "
+                                      "displacement relative to the ground")
     ds.attrs["capacity_policy"] = capacity
     ds.attrs["failed"] = int(run.failure is not None)
     if run.failure is not None:

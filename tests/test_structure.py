@@ -1,0 +1,373 @@
+"""The isolated structure (dccss.mechanics.structure): closed forms, the circular interaction, the
+ground acceleration of every excitation, and the stroke driving the pad."""
+
+import math
+
+import numpy as np
+import pytest
+
+from dccss.case import case_from
+from dccss.checks import CaseError
+from dccss.excitation import Component, Oriented, PlaneTable, Scaled, Sine, Table
+from dccss.mechanics.geometry import Geometry
+from dccss.mechanics.structure import G, Ground, Structure, StructureError, period, respond, solve
+from dccss.paper.prototypes import TABLE1
+from dccss.records import Record, RecordPair
+from dccss.simulation import simulate
+
+RECORDS = "config/studies/records"
+L = 1.8  # m: a pendulum of T = 2.69 s
+OMEGA = math.sqrt(G / L)
+
+
+def _record(name="synthetic.AT2", scale=2.0):
+    return Record.from_file(f"{RECORDS}/{name}", scale=scale)
+
+
+def _constant(a, duration=20.0, n=2001, components=1):
+    t = np.linspace(0.0, duration, n)
+    return t, Ground.from_samples(t, np.tile(np.atleast_1d(a), (n, 1)) if components == 2 else np.full(n, a))
+
+
+# --- closed forms ------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("components", [1, 2])
+def test_free_sliding_is_a_pendulum_of_length_L(components):
+    """μ = 0: after a pulse the structure swings freely with the period 2π √(L / g)."""
+    t = np.linspace(0.0, 30.0, 3001)
+    pulse = np.where(t < 0.5, 1.0, 0.0)
+    acc = pulse if components == 1 else np.column_stack([0.6 * pulse, 0.8 * pulse])
+    r = solve(Ground.from_samples(t, acc), t, L, 0.0, 0.0)
+    u = r.stroke[:, 0] if components == 1 else r.stroke @ np.array([0.6, 0.8])
+    free = t > 1.0
+    crossings = []
+    for k in np.flatnonzero(free[:-1] & (np.sign(u[:-1]) != np.sign(u[1:]))):
+        crossings.append(t[k] - u[k] * (t[k + 1] - t[k]) / (u[k + 1] - u[k]))
+    measured = 2 * np.mean(np.diff(crossings))
+    # linear interpolation of the crossings on a 0.01 s grid: O(1e-5) s
+    assert measured == pytest.approx(period(L), abs=1e-4)
+    assert period(L) == pytest.approx(2 * np.pi * np.sqrt(L / 9.80665))
+    if components == 2:  # a pulse along one direction keeps the motion on it
+        assert np.max(np.abs(r.stroke @ np.array([0.8, -0.6]))) < 1e-12
+
+
+@pytest.mark.parametrize("components", [1, 2])
+def test_a_harmonic_ground_motion_below_mu_g_never_moves_the_structure(components):
+    mu = 0.05
+    t = np.linspace(0.0, 10.0, 2001)
+    a = 0.99 * mu * G * np.sin(3.0 * t)
+    acc = a if components == 1 else np.column_stack([a * np.cos(0.3), a * np.sin(0.3)])
+    r = solve(Ground.from_samples(t, acc), t, L, mu, 0.0)
+    assert np.all(r.stroke == 0.0) and np.all(r.sticking)
+    assert np.max(np.linalg.norm(r.z, axis=1)) <= 0.99 + 1e-12
+    # the same just above mu g moves it
+    r = solve(Ground.from_samples(t, acc / 0.99 * 1.05), t, L, mu, 0.0)
+    assert np.max(np.abs(r.stroke)) > 1e-4
+
+
+def _coulomb_rest(a, mu):
+    """The undamped friction pendulum under a constant ground acceleration a > μ g, from rest at u = 0:
+    half-cycles about the centres -(a ∓ μ g) / ω², each ending at rest; it stays where the demand
+    |-a - ω² u| is at most μ g."""
+    u, sign = 0.0, -1.0  # the first half-cycle slides towards -x
+    for _ in range(1000):
+        centre = -(a + sign * mu * G) / OMEGA**2
+        u = 2 * centre - u
+        if abs(-a - OMEGA**2 * u) <= mu * G:
+            return u
+        sign = -sign
+    raise AssertionError("no rest")
+
+
+@pytest.mark.parametrize("ratio", [1.5, 2.0, 2.9, 4.5, 7.0])
+@pytest.mark.parametrize("components", [1, 2])
+def test_a_constant_ground_acceleration_leaves_the_known_offset(ratio, components):
+    """a = ratio μ g: for a <= 3 μ g the structure rests after one half-cycle at -2 (a - μ g) / ω²;
+    beyond, each half-cycle loses 2 μ g / ω² of amplitude (the Coulomb oscillator)."""
+    mu = 0.04
+    a = ratio * mu * G
+    direction = np.array([1.0]) if components == 1 else np.array([np.cos(1.1), np.sin(1.1)])
+    t, ground = _constant(a * direction, duration=60.0, n=6001, components=components)
+    r = solve(ground, t, L, mu, 0.0)
+    expected = _coulomb_rest(a, mu)
+    if ratio <= 3:
+        assert expected == pytest.approx(-2 * (a - mu * G) / OMEGA**2, rel=1e-12)
+    assert r.stroke[-1] == pytest.approx(expected * direction, abs=1e-12)
+    assert r.sticking[-1] and not r.sticking[1:5].any()
+
+
+def test_damping_brings_the_free_swing_to_rest_at_the_rate_of_a_damped_oscillator():
+    """μ = 0, ζ = 0.05: successive peaks of the free swing decay by exp(-2π ζ / √(1 - ζ²))."""
+    t = np.linspace(0.0, 40.0, 8001)
+    acc = np.where(t < 0.5, 1.0, 0.0)
+    zeta = 0.05
+    u = solve(Ground.from_samples(t, acc), t, L, 0.0, zeta).stroke[:, 0]
+    peaks = [abs(u[k]) for k in range(1, t.size - 1) if t[k] > 1.0 and abs(u[k]) >= abs(u[k - 1])
+             and abs(u[k]) > abs(u[k + 1])]
+    decay = np.array(peaks[2:8:2]) / np.array(peaks[0:6:2])  # peaks a period apart
+    # the sampled peak is within (ω dt)² / 2 of the true one
+    assert decay == pytest.approx(np.exp(-2 * np.pi * zeta / np.sqrt(1 - zeta**2)), rel=2e-5)
+
+
+# --- one component: an independent event-driven integration ------------------------------------
+
+def _reference_line(t, acc, mu, zeta):
+    """The one-component history by scipy's Radau integrator between events (not the closed form):
+    sliding until u̇ = 0, sticking until the demand reaches μ g (by bisection on the samples' lines)."""
+    from scipy.integrate import solve_ivp
+
+    ground = Ground.from_samples(t, acc)
+    omega, f = OMEGA, mu * G
+
+    def a_g(s):
+        return ground.at(np.array([s]))[0, 0]
+
+    u, v, out, sticking = 0.0, 0.0, [0.0], True
+    now = t[0]
+    for k in range(1, t.size):
+        while now < t[k]:
+            if sticking:
+                demand = np.array([-a_g(s) - omega**2 * u for s in (now, t[k])])
+                if np.all(np.abs(demand) <= f):
+                    now = t[k]
+                    continue
+                lo, hi = now, t[k]
+                for _ in range(100):
+                    mid = 0.5 * (lo + hi)
+                    lo, hi = (mid, hi) if abs(-a_g(mid) - omega**2 * u) <= f else (lo, mid)
+                now, sticking, sign = hi, False, np.sign(-a_g(hi) - omega**2 * u)
+                continue
+
+            def rhs(s, y, sign=sign):
+                return [y[1], -a_g(s) - 2 * zeta * omega * y[1] - omega**2 * y[0] - f * sign]
+
+            def stop(s, y, sign=sign):
+                return sign * y[1]
+
+            stop.terminal, stop.direction = True, -1
+            sol = solve_ivp(rhs, (now, t[k]), [u, v], method="Radau", rtol=1e-12, atol=1e-14, events=stop,
+                            first_step=1e-6)
+            u, v, now = sol.y[0, -1], sol.y[1, -1], sol.t[-1]
+            if sol.status == 1:
+                v = 0.0
+                demand = -a_g(now) - omega**2 * u
+                sticking = abs(demand) <= f
+                sign = np.sign(demand)
+        out.append(u)
+    return np.array(out)
+
+
+@pytest.mark.slow
+def test_the_exact_one_component_solution_equals_an_independent_integration():
+    rec = _record()
+    n = 801  # 8 s of the record: stick, slip and reversals
+    for mu, zeta in ((0.03, 0.0), (0.08, 0.1)):
+        exact = solve(Ground.from_samples(rec.time[:n], rec.acceleration[:n]), rec.time[:n], L, mu, zeta)
+        reference = _reference_line(rec.time[:n], rec.acceleration[:n], mu, zeta)
+        assert np.max(np.abs(exact.stroke[:, 0] - reference)) < 1e-8
+        assert exact.sticking.any() and not exact.sticking.all()
+
+
+# --- two components ------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("azimuth", [30.0, 225.0])
+@pytest.mark.parametrize(("mu", "zeta"), [(0.03, 0.0), (0.06, 0.1)])
+def test_a_record_along_one_azimuth_gives_the_one_component_result_turned(azimuth, mu, zeta):
+    rec = _record()
+    one = solve(rec.ground_acceleration(), rec.time, L, mu, zeta)
+    oriented = Oriented(rec, azimuth)
+    two = solve(oriented.ground_acceleration(), rec.time, L, mu, zeta)
+    d = oriented.direction
+    assert np.max(np.abs(two.stroke - one.stroke * d)) < 1e-9
+    assert np.max(np.abs(two.velocity - one.velocity * d)) < 1e-9
+    assert np.array_equal(two.sticking, one.sticking)
+    assert np.max(np.abs(two.shear_ratio - one.shear_ratio * d)) < 1e-6
+
+
+@pytest.mark.parametrize(("mu", "zeta"), [(0.03, 0.0), (0.05, 0.05)])
+def test_the_circular_interaction_holds_at_every_step(mu, zeta):
+    pair = RecordPair.from_files([f"{RECORDS}/synthetic.AT2", f"{RECORDS}/synthetic_y.AT2"], scale=2.0)
+    r = solve(pair.ground_acceleration(), pair.time, L, mu, zeta)
+    size = np.linalg.norm(r.z, axis=1)
+    assert np.all(size <= 1 + 1e-12)
+    sliding = ~r.sticking
+    assert sliding.any() and r.sticking.any()
+    assert np.allclose(size[sliding], 1.0, atol=1e-12)
+    # sliding: z is along the velocity; sticking: the velocity is zero
+    speed = np.linalg.norm(r.velocity, axis=1)
+    moving = sliding & (speed > 1e-6)
+    assert np.allclose(r.z[moving], r.velocity[moving] / speed[moving, None], atol=1e-9)
+    assert np.all(r.velocity[r.sticking] == 0.0)
+    # the force ratio is the pendulum's and the friction's
+    assert np.allclose(r.shear_ratio, r.stroke / L + mu * r.z, rtol=0, atol=1e-15)
+    # bidirectional motion is not two unidirectional ones: the interaction couples the components
+    x = solve(pair.x.ground_acceleration(), pair.time, L, mu, zeta)
+    assert np.max(np.abs(r.stroke[:, 0] - x.stroke[:, 0])) > 1e-3
+
+
+# --- the ground acceleration of each excitation --------------------------------------------------
+
+def test_a_sine_drives_the_structure_with_its_second_derivative():
+    sine = Sine(0.1, 3.0, 5.0)
+    ground = sine.ground_acceleration()
+    t = np.linspace(0.0, 5.0, 777)
+    exact = -0.1 * 9.0 * np.sin(3.0 * t)
+    # linear interpolation between 4000 samples a period: (2π / 4000)² / 8 of the peak
+    assert np.max(np.abs(ground.at(t)[:, 0] - exact)) <= 0.9 * (2 * np.pi / 4000) ** 2 / 8 * 1.0001
+    # a displacement below the threshold a = μ g never moves it; the structure starts at rest
+    r = respond(ground, t, L, Structure(0.1))
+    assert np.all(r.stroke == 0.0)
+
+
+def test_a_table_drives_the_structure_with_the_derivative_of_its_velocity():
+    t = np.linspace(0.0, 2.0, 41)
+    x = 0.05 * np.sin(2.0 * t) ** 2
+    table = Table(t, x)
+    ground = table.ground_acceleration()
+    mid = 0.5 * (t[:-1] + t[1:])
+    slope = np.diff(table.velocity(t)) / np.diff(t)
+    assert np.allclose(ground.at(mid)[:, 0], slope, rtol=0, atol=1e-14)
+    plane = PlaneTable(t, x, -2 * x)
+    assert np.allclose(plane.ground_acceleration().at(mid), np.column_stack([slope, -2 * slope]), atol=1e-14)
+
+
+def test_wrappers_carry_the_ground_acceleration():
+    rec = _record(scale=1.0)
+    base = rec.ground_acceleration()
+    assert np.array_equal(base.a0[:, 0], rec.acceleration[:-1])
+    assert np.allclose(Scaled(rec, -2.0).ground_acceleration().a0, -2 * base.a0, rtol=0, atol=0)
+    turned = Oriented(rec, 90.0).ground_acceleration()
+    assert np.array_equal(turned.a0[:, 0], 0 * base.a0[:, 0]) and np.array_equal(turned.a0[:, 1], base.a0[:, 0])
+    pair = RecordPair(rec, _record("synthetic_y.AT2", scale=1.0))
+    only_y = Component(pair, "y").ground_acceleration()
+    assert np.all(only_y.a0[:, 0] == 0) and np.array_equal(only_y.a0[:, 1], pair.y.acceleration[:-1])
+
+
+def test_refining_the_ground_keeps_its_acceleration():
+    rec = _record()
+    ground = rec.ground_acceleration()
+    times = np.arange(rec.t_start, rec.t_end, 0.0037)
+    fine, index = ground.refined(times)
+    assert np.allclose(fine.time[index], times, rtol=0, atol=1e-12)
+    probe = np.linspace(rec.t_start, rec.t_end, 9999)
+    assert np.allclose(fine.at(probe), ground.at(probe), rtol=0, atol=1e-12)
+    # output between the samples is the same history
+    r = solve(ground, times, L, 0.04, 0.0)
+    on_samples = solve(ground, rec.time, L, 0.04, 0.0)
+    common = np.isin(np.round(times, 9), np.round(rec.time, 9))
+    assert common.sum() > 10
+    k = np.searchsorted(np.round(rec.time, 9), np.round(times[common], 9))
+    assert np.allclose(r.stroke[common], on_samples.stroke[k], rtol=0, atol=1e-12)
+
+
+# --- parameters ----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize(("friction", "damping", "key"), [(0.0, 0.0, "friction"), (1.0, 0.0, "friction"),
+                                                         (-0.1, 0.0, "friction"), (0.05, -0.01, "damping"),
+                                                         (0.05, 1.0, "damping"), (float("nan"), 0.0, "friction"),
+                                                         ("0.05", 0.0, "friction")])
+def test_bad_structure_parameters_are_refused_naming_the_key(friction, damping, key):
+    with pytest.raises(StructureError, match=rf"structure\.{key}"):
+        Structure(friction, damping)
+
+
+CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": 2.0}, "dt": 0.01,
+        "model": "compliant"}
+
+
+@pytest.mark.parametrize(("structure", "message"), [
+    ({"friction": 0.0}, r"structure\.friction: 0\.0 is outside 0 < μ < 1"),
+    ({"friction": 1.2}, r"structure\.friction: 1\.2 is outside"),
+    ({"friction": 0.05, "damping": -0.1}, r"structure\.damping: -0\.1 is outside 0 <= ζ < 1"),
+    ({"friction": 0.05, "mass": 1.0}, r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction'\]"),
+    ({"damping": 0.05}, r"structure: missing key\(s\) \['friction'\]"),
+    (0.05, r"structure: expected a mapping"),
+])
+def test_a_case_file_refuses_a_bad_structure_naming_the_key(structure, message):
+    from pathlib import Path
+
+    with pytest.raises(CaseError, match=message):
+        case_from({**CASE, "structure": structure}, Path(RECORDS))
+
+
+# --- the stroke drives the pad -------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def device():
+    return Geometry.from_degrees(**TABLE1["DFP1"])
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_the_pad_under_the_stroke_equals_the_stroke_given_as_a_table(model, device, tmp_path):
+    """RB1 moves by minus the stroke; the same motion as a table gives the same kinematics, bit for bit."""
+    from pathlib import Path
+
+    case = case_from({**CASE, "model": model, "structure": {"friction": 0.04, "damping": 0.02}}, Path(RECORDS))
+    ds = case.run()
+    assert np.array_equal(ds["Rx1"].values, -ds["stroke"].values + 0.0)
+    table = tmp_path / "stroke.csv"
+    np.savetxt(table, np.column_stack([ds["t"].values, -ds["stroke"].values]), delimiter=",",
+               header="time,displacement", comments="", fmt="%.17g")
+    again = case_from({**CASE, "model": model, "excitation": {"kind": "table", "file": str(table)}}, Path("."))
+    other = again.run()
+    for name in ("theta2", "Rx2", "Ry3", "rise", "I_A", "I_D"):
+        assert np.array_equal(ds[name].values, other[name].values), name
+    # the ground motion is kept beside it
+    assert np.array_equal(ds["Xg"].values, case.excitation.displacement(ds["t"].values))
+
+
+def test_compliant_sliding_under_a_stroke_is_a_pendulum_of_length_L(device):
+    """The device's pendulum length is |C1C3| = L: in the compatible configuration at θ² the plates
+    are L sin θ² apart sideways and RB3 has risen by L (1 - cos θ²) (Eq. 41); the compliant model
+    follows it up to the interpenetration it lets through (a pad rotation off by at most I / L)."""
+    from pathlib import Path
+
+    theta = np.linspace(-0.2, 0.2, 41)
+    q = device.compatible(theta)
+    assert np.allclose(q[:, 6] - q[:, 0], device.L * np.sin(theta), rtol=0, atol=1e-15)
+    assert np.allclose(q[:, 7] - device.Ry3_compatible(0.0), device.L * (1 - np.cos(theta)), rtol=0, atol=1e-15)
+    ds = case_from({**CASE, "structure": {"friction": 0.05}}, Path(RECORDS)).run()
+    u = ds["stroke"].values
+    theta = np.radians(ds["theta2"].values)
+    interpenetration = max(np.max(np.abs(ds[f"I_{c}"].values)) for c in "ABCD")
+    assert 0 < interpenetration < 1e-4
+    assert np.max(np.abs(np.sin(theta) - u / device.L)) <= interpenetration / device.L
+    assert ds.attrs["structure_pendulum_length_m"] == device.L
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_a_two_component_structure_drives_the_spatial_models(model, tmp_path):
+    from pathlib import Path
+
+    spec = {**CASE, "model": model, "excitation": {"kind": "record", "file": ["synthetic.AT2", "synthetic_y.AT2"],
+                                                    "scale": 1.5}, "structure": {"friction": 0.05}}
+    ds = case_from(spec, Path(RECORDS)).run()
+    for name in ("stroke_x", "stroke_y", "stroke_velocity_x", "shear_ratio_y", "z_x", "z_y", "structure_sticking"):
+        assert name in ds, name
+    assert ds["stroke_x"].attrs["units"] == "m" and ds["shear_ratio_x"].attrs["units"] == "1"
+    assert ds.attrs["motion"] == "bidirectional" and ds.attrs["structure_friction"] == 0.05
+    assert "minus the stroke" in ds.attrs["imposed_motion"]
+    # the same stroke as a two-component table
+    table = tmp_path / "stroke.csv"
+    np.savetxt(table, np.column_stack([ds["t"].values, -ds["stroke_x"].values, -ds["stroke_y"].values]),
+               delimiter=",", header="time,x,y", comments="", fmt="%.17g")
+    other = case_from({**CASE, "model": model, "excitation": {"kind": "table", "file": str(table)}}, Path(".")).run()
+    for name in ("tilt", "rise", "G2_x", "G2_y"):
+        assert np.allclose(ds[name].values, other[name].values, rtol=0, atol=1e-12, equal_nan=True), name
+
+
+def test_without_a_structure_the_ground_displacement_is_imposed(device):
+    from pathlib import Path
+
+    ds = case_from(CASE, Path(RECORDS)).run()
+    assert "stroke" not in ds and "structure_friction" not in ds.attrs
+    assert np.array_equal(ds["Rx1"].values, ds["Xg"].values)
+
+
+def test_simulate_takes_a_structure(device):
+    sine = Sine(0.05, 2.0, 6.0)
+    ds = simulate(device, sine, model="compliant", dt=0.01, structure=Structure(0.02, 0.05))
+    # the sine's acceleration 0.2 m/s² is above μ g = 0.196 m/s²: it slides, a little
+    assert 0 < np.max(np.abs(ds["stroke"].values)) < 0.05
+    assert ds.attrs["structure_damping"] == 0.05
+    assert ds.attrs["structure_period_s"] == pytest.approx(2 * np.pi * np.sqrt(device.L / G))
