@@ -97,11 +97,13 @@ class Sine:
     #: samples a period of the sine's acceleration is drawn with in ``ground_acceleration``
     SAMPLES_PER_PERIOD = 4000
 
-    def ground_acceleration(self) -> Ground:
-        """-X_g,max ω² sin(ω t), sampled at SAMPLES_PER_PERIOD points a period and joined by straight lines."""
-        periods = abs(self.omega) * self.duration / (2 * np.pi)
+    def ground_acceleration(self, amplitude=None, omega=None) -> Ground:
+        """-X_g,max ω² sin(ω t), sampled at SAMPLES_PER_PERIOD points a period and joined by straight
+        lines (``amplitude``, ``omega``: one case's, in place of the sine's own)."""
+        amplitude, omega = (float(v) for v in self._batch(amplitude, omega))
+        periods = abs(omega) * self.duration / (2 * np.pi)
         t = np.linspace(0.0, self.duration, max(2, int(np.ceil(periods * self.SAMPLES_PER_PERIOD)) + 1))
-        return Ground.from_samples(t, -self.amplitude * self.omega**2 * np.sin(self.omega * t))
+        return Ground.from_samples(t, -amplitude * omega**2 * np.sin(omega * t))
 
     def attrs(self) -> dict:
         return {"excitation": "sine", "amplitude_m": self.amplitude, "omega_rad_per_s": self.omega,
@@ -362,8 +364,10 @@ class Oriented(_Wrapper):
         """(dx/dt, dy/dt) (m/s), as ``displacement``."""
         return self._along(self.excitation.velocity(t, **parameters), azimuth)
 
-    def ground_acceleration(self) -> Ground:
-        return _times(self.excitation.ground_acceleration(), self.direction)
+    def ground_acceleration(self, azimuth=None, **parameters) -> Ground:
+        """The inner excitation's along the azimuth (one case's ``azimuth`` in degrees and inner parameters)."""
+        along = np.array(direction(self.azimuth_deg if azimuth is None else azimuth))
+        return _times(self.excitation.ground_acceleration(**parameters), along)
 
     def attrs(self) -> dict:
         return {**self.excitation.attrs(), "excitation_components": 2, "excitation_form": "oriented",
@@ -410,8 +414,8 @@ class Component(_Wrapper):
     def velocity(self, t, **parameters):
         return self.excitation.velocity(t, **parameters) * self.mask
 
-    def ground_acceleration(self) -> Ground:
-        return _times(self.excitation.ground_acceleration(), self.mask)
+    def ground_acceleration(self, **parameters) -> Ground:
+        return _times(self.excitation.ground_acceleration(**parameters), self.mask)
 
     def attrs(self) -> dict:
         return {**self.excitation.attrs(), "excitation_component": self.which}

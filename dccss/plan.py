@@ -15,14 +15,15 @@ import numpy as np
 from matplotlib.patches import Circle, Polygon
 
 from . import drawing
-from .results import geometry_from_attrs, is_bidirectional
+from .results import geometry_from_attrs, has_structure, imposed, is_bidirectional
 
 MAX_INSTANTS = 4
 
 
 @dataclass
 class View:
-    """A history in space (SI units, time first): ground (T, 2), pad centre G (T, 3), pad axis (T, 3),
+    """A history in space (SI units, time first): ground (T, 2) (RB1 relative to RB3: the ground
+    displacement, or minus a structure's stroke), pad centre G (T, 3), pad axis (T, 3),
     RB3 position R3 (T, 3), tilt and its azimuth (T,) (degrees), rise (T,) (m), and the same at the
     end of sticking (None for compliant sliding)."""
 
@@ -49,7 +50,7 @@ def view(ds) -> View:
         if "tilt_stick" in ds:
             stick = {"tilt": ds["tilt_stick"].values, "tilt_azimuth": ds["tilt_azimuth_stick"].values,
                      "axis": _xyz(ds, "axis", "_stick"), "G": _xyz(ds, "G2", "_stick")}
-        return View(t, np.stack([ds["Xg_x"].values, ds["Xg_y"].values], axis=-1), _xyz(ds, "G2"), _xyz(ds, "axis"),
+        return View(t, imposed(ds), _xyz(ds, "G2"), _xyz(ds, "axis"),
                     _xyz(ds, "R3"), ds["tilt"].values, ds["tilt_azimuth"].values, ds["rise"].values, stick)
     zero = np.zeros_like(t)
 
@@ -67,7 +68,7 @@ def view(ds) -> View:
         a, ti, az, Gs = planar("_stick")
         stick = {"tilt": ti, "tilt_azimuth": az, "axis": a, "G": Gs}
     R3 = np.stack([ds["Rx3"].values, zero, ds["Ry3"].values], axis=-1)
-    return View(t, np.stack([ds["Xg"].values, zero], axis=-1), G, axis, R3, tilt, azimuth, ds["rise"].values, stick)
+    return View(t, np.stack([imposed(ds), zero], axis=-1), G, axis, R3, tilt, azimuth, ds["rise"].values, stick)
 
 
 def section_q(v: View, n, g, stick=False) -> dict:
@@ -92,11 +93,11 @@ def rim(centre, axis, radius, k=73):
     return (centre[None, :] + radius * (np.cos(beta)[:, None] * u + np.sin(beta)[:, None] * w))[:, :2]
 
 
-def draw_plan(ax, v: View, g, n, *, history=True, colour="tab:orange"):
+def draw_plan(ax, v: View, g, n, *, history=True, colour="tab:orange", ground_label="ground $X_g$"):
     """Plan view at step n (cm): the rings of RB1 (moving with the ground) and RB3, the pad's two rims
-    and, with ``history``, the ground path and the pad centre's path up to n."""
+    and, with ``history``, the path of RB1 (labelled ``ground_label``) and the pad centre's path up to n."""
     if history:
-        ax.plot(100 * v.ground[: n + 1, 0], 100 * v.ground[: n + 1, 1], color="0.55", lw=0.9, label="ground $X_g$")
+        ax.plot(100 * v.ground[: n + 1, 0], 100 * v.ground[: n + 1, 1], color="0.55", lw=0.9, label=ground_label)
         ax.plot(100 * v.G[: n + 1, 0], 100 * v.G[: n + 1, 1], color=colour, lw=1.1, label="pad centre $G^2$")
     ring1, ring3 = (float(r) for r in g.ring_inner_x)
     ax.add_patch(Circle(100 * v.ground[n], 100 * ring1, fill=False, ec="0.35", lw=1.0))
@@ -189,11 +190,12 @@ def figure(ds, at=None, title=None):
     g = geometry_from_attrs(ds.attrs)
     v = view(ds)
     steps = instants(v, at)
-    fig = drawing.new_figure((11.0, 8.6), nrows=None)
-    grid = fig.add_gridspec(3, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0))
+    structure = has_structure(ds)
+    fig = drawing.new_figure((11.0, 11.4 if structure else 8.6), nrows=None)
+    grid = fig.add_gridspec(3 + structure, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0) + (0.95,) * structure)
     plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
     trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
-    draw_plan(plan, v, g, steps[-1])
+    draw_plan(plan, v, g, steps[-1], ground_label="RB1 relative to RB3: $-u$" if structure else "ground $X_g$")
     plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
     drawing.legend_on(plan, fontsize=8, loc="best")
     draw_axis_trace(trace, v)
@@ -215,11 +217,43 @@ def figure(ds, at=None, title=None):
         ax.set_title(f"({chr(100 + k)}) t = {v.t[n]:.3g} s: tilt {v.tilt[n]:.2f} deg{plane}", fontsize=9)
         ax.set_xlabel("along the lean (cm)")
         ax.set_ylabel("z (cm)")
+    if structure:
+        half = max(1, grid.ncols // 2)
+        draw_structure(fig.add_subplot(grid[3, :half]), fig.add_subplot(grid[3, half:]), ds, steps,
+                       letters=(chr(100 + len(steps)), chr(101 + len(steps))))
     motion = "bidirectional" if is_bidirectional(ds) else "unidirectional (x)"
     drawing.caption_line(fig, title or (f"{ds.attrs.get('title', 'dccss history')}: {motion} ground motion; "
                                         "sections in the vertical plane of the pad axis, end of sticking in red"))
     drawing.freeze(fig)
     return fig
+
+
+def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
+    """A structure-driven history: the stroke u beside the ground displacement X_g against time, and the
+    device's loop F/W against u (x solid, y dashed for two components; cm)."""
+    t = ds["t"].values
+    parts = (("_x", "-", " x"), ("_y", "--", " y")) if is_bidirectional(ds) else (("", "-", ""),)
+    for suffix, ls, name in parts:
+        history.plot(t, 100 * ds[f"Xg{suffix}"].values, color="k", lw=1.0, ls=ls, label=f"ground $X_g${name}")
+        history.plot(t, 100 * ds[f"stroke{suffix}"].values, color="tab:green", lw=1.2, ls=ls, label=f"stroke $u${name}")
+        loop.plot(100 * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color="tab:green", lw=0.9,
+                  ls=ls, label=f"$u${name}" if suffix else None)
+    for n in steps:
+        history.axvline(t[n], color="0.5", lw=0.7, ls=":")
+    a = ds.attrs
+    history.set_title(f"({letters[0]}) the structure on the device (μ = {a['structure_friction']:g}, "
+                      f"ζ = {a['structure_damping']:g}, T = {a['structure_period_s']:.3g} s)", fontsize=9)
+    history.set_xlabel("t (s)")
+    history.set_ylabel("displacement (cm)")
+    drawing.legend_on(history, fontsize=8, loc="best")
+    loop.set_title(f"({letters[1]}) force-displacement loop of the device", fontsize=9)
+    loop.set_xlabel("stroke u (cm)")
+    loop.set_ylabel("F/W (-)")
+    if len(parts) > 1:
+        loop.legend(fontsize=8, loc="best")
+    for ax in (history, loop):
+        ax.grid(True, color="0.9", lw=0.6)
+        ax.axhline(0, color="0.6", lw=0.6, zorder=1)
 
 
 # --- command line ------------------------------------------------------------------------------

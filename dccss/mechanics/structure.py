@@ -133,6 +133,22 @@ class Response(NamedTuple):
     sticking: np.ndarray
 
 
+#: a structure's summaries of one history: name -> (units, long_name)
+SUMMARIES = {
+    "stroke_max_abs": ("m", "largest |stroke| (the superstructure's displacement relative to the ground)"),
+    "stroke_end": ("m", "residual stroke u(t_end) (its size |u| for two components)"),
+    "shear_ratio_max_abs": ("1", "largest |F/W| of the device"),
+}
+
+
+def summarize(response: Response) -> dict:
+    """The :data:`SUMMARIES` of a response: vector sizes for two components, u(t_end) signed for one."""
+    stroke = np.linalg.norm(response.stroke, axis=1)
+    end = response.stroke[-1, 0] if response.stroke.shape[1] == 1 else stroke[-1]
+    return {"stroke_max_abs": float(np.max(stroke)), "stroke_end": float(end),
+            "shear_ratio_max_abs": float(np.max(np.linalg.norm(response.shear_ratio, axis=1)))}
+
+
 def respond(ground: Ground, times, L, structure: Structure) -> Response:
     """The structure's response to ``ground`` at ``times`` (s, within the ground's span), on a device
     of pendulum length L (m); at rest (u = u̇ = 0) at ``ground.time[0]``."""

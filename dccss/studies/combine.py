@@ -6,6 +6,7 @@ import numpy as np
 import xarray as xr
 
 from ..mechanics.models import REGISTRY
+from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.summaries import MODEL_SPECIFIC, SUMMARIES
 from ..results import global_attrs, variable
 
@@ -27,7 +28,9 @@ def study_attrs(study, model=None) -> dict:
                        on_failure=study.options.on_failure, symmetric=int(study.symmetric),
                        sweep_axes=" ".join(study.axes),
                        **({"dt_s": study.dt} if study.dt is not None and "dt" not in study.axes else {}),
-                       **{f"prototype_{k}": float(v) for k, v in study.prototype.items()}, **study.excitation.attrs())
+                       **{f"prototype_{k}": float(v) for k, v in study.prototype.items()}, **study.excitation.attrs(),
+                       **({} if study.structure is None else
+                          {f"structure_{k}": v for k, v in vars(study.structure).items()}))
     if model:
         out["model"] = model
     return out
@@ -44,7 +47,7 @@ def combine(study, chunks: dict) -> xr.Dataset:
             raise ValueError(f"{model}: {ds.sizes['case']} cases in the chunks, expected {grid.n_cases}")
         ds = ds.drop_vars(list(study.axes))
         variables = {}
-        for name in SUMMARIES:
+        for name in {**SUMMARIES, **STRUCTURE_SUMMARIES}:
             if name in ds:
                 variables[name] = xr.Variable(dims, ds[name].values.reshape(grid.shape), ds[name].attrs)
             elif name in MODEL_SPECIFIC:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..excitation import step_times
+from ..mechanics import structure
 from ..mechanics.geometry import PARAMETERS, Geometry
 
 #: with ``symmetric: true`` the plate-3 and cap-23 parameters follow those of plate 1 and cap 21
@@ -79,9 +80,43 @@ class Grid:
             return np.where(values["component"] == "y", np.pi / 2, np.where(values["component"] == "x", 0.0, base))
         return base
 
+    def structures(self, cases) -> list:
+        """The structure of each case (``mechanics.structure.Structure``), or None where the study has none."""
+        study, values = self.study, self.values(cases)
+        if study.structure is None:
+            return [None] * len(cases)
+        base = vars(study.structure)
+        return [type(study.structure)(**{**base, **{k: float(values[k][i]) for k in ("friction", "damping")
+                                                    if k in values}}) for i in range(len(cases))]
+
     def times(self, dt) -> np.ndarray:
         """The step times at step size dt (s)."""
         return step_times(self.study.excitation, dt)
+
+    def imposed(self, cases, t) -> tuple[np.ndarray, dict]:
+        """The motion imposed on RB1 relative to RB3 at the step times t, (T, n) or (T, n, 2), and the
+        structure's summaries of each case (``structure.SUMMARIES``; {} without a structure): the
+        ground motion, or minus the stroke of each case's structure, driven by that case's ground
+        acceleration (its scale, component or azimuth, its sine's amplitude and omega) on a pendulum
+        of its device's L."""
+        if self.study.structure is None:
+            return self.ground_motion(cases, t), {}
+        excitation, values = self.study.excitation, self.values(cases)
+        L = np.broadcast_to(self.geometry(cases).L, (len(cases),))
+        out = np.zeros((len(t), len(cases), excitation.components))
+        summaries = {name: np.zeros(len(cases)) for name in structure.SUMMARIES}
+        for i, mine in enumerate(self.structures(cases)):
+            own = {k: values[k][i] for k in excitation.parameters if k in values}
+            factor = float(values["scale"][i]) if "scale" in values else 1.0
+            if "component" in values:
+                factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
+            ground = excitation.ground_acceleration(**own)
+            ground = structure.Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
+            response = structure.respond(ground, t, float(L[i]), mine)
+            out[:, i] = 0.0 - response.stroke
+            for name, value in structure.summarize(response).items():
+                summaries[name][i] = value
+        return (out[..., 0] if excitation.components == 1 else out), summaries
 
     def ground_motion(self, cases, t) -> np.ndarray:
         """X_g (T, n) of the cases at the step times t, or (T, n, 2) for a bidirectional excitation:

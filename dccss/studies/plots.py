@@ -9,7 +9,8 @@
 
 ``histories`` draws, for each history point, the ground displacement, θ², the rise of RB3 and
 the largest corner interpenetration against time, one column per point, with the times at which
-the pad reached a retaining ring or the solver failed.
+the pad reached a retaining ring or the solver failed; with a structure, the stroke beside the
+ground displacement and a last row with the device's force-displacement loop (F/W against u).
 
 The datasets are SI (angles in degrees); the plots are in paper units: degrees, cm, mm.
 """
@@ -29,7 +30,7 @@ from matplotlib.ticker import NullLocator
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
 from ..mechanics.summaries import MODEL_SPECIFIC
-from ..results import MODEL_TITLES
+from ..results import MODEL_TITLES, has_structure
 
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
 OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))
@@ -47,7 +48,10 @@ SUMMARY_VARIABLES = [
     ("sticking_rotation_max", "max sticking rotation", 1.0, "°"),
     ("rise_max", "max rise of RB3", 100.0, "cm"),
     ("interpenetration_max", "max interpenetration (corners)", 1e3, "mm"),
+    ("stroke_max_abs", "max |stroke u| of the structure", 100.0, "cm"),
+    ("shear_ratio_max_abs", "max |F/W| of the device", 1.0, "-"),
 ]
+STROKE_COLOUR = "tab:green"
 #: (history variable, label, factor to plot units, plot unit)
 HISTORY_ROWS = [
     ("Xg", "ground displacement $X_g$", 100.0, "cm"),
@@ -56,7 +60,8 @@ HISTORY_ROWS = [
     ("interpenetration", "max $|I|$ of the corners", 1e3, "mm"),
 ]
 AXIS_SYMBOLS = {"amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$", "theta2_0": "$θ^2(t_0)$",
-                "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$", "component": "component of $X_g$"}
+                "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$", "component": "component of $X_g$",
+                "friction": "friction μ", "damping": "damping ζ"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
@@ -166,9 +171,11 @@ def histories(points: list, caption: str) -> Figure:
     if not points:
         raise ValueError("histories: no history points to draw")
     models = _ordered({m for _, runs in points for m in runs})
-    rows, ncols = len(HISTORY_ROWS), min(len(points), POINTS_PER_ROW)
+    structure = any(has_structure(ds) for _, runs in points for ds in runs.values())
+    rows, ncols = len(HISTORY_ROWS) + structure, min(len(points), POINTS_PER_ROW)
     blocks = -(-len(points) // POINTS_PER_ROW)
-    fig, axs = new_figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks), rows * blocks, ncols)
+    fig, axs = new_figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks * rows / len(HISTORY_ROWS)),
+                          rows * blocks, ncols)
     events = set()
     for k, (label, runs) in enumerate(points):
         block, c = divmod(k, POINTS_PER_ROW)
@@ -177,25 +184,34 @@ def histories(points: list, caption: str) -> Figure:
         events |= _history_column(col, f"({_letter(k)}) {label}", runs, models)
     for ax in _unused(axs, len(points), rows):
         ax.set_visible(False)
+    two = any(_bidirectional(ds) for _, runs in points for ds in runs.values())
     lines = [Line2D([], [], color="k", lw=1.2, label="$X_g$, imposed ground motion")]
-    if any(_bidirectional(ds) for _, runs in points for ds in runs.values()):
+    if two:
         lines = [Line2D([], [], color="k", lw=1.2, label="$X_{g,x}$"),
                  Line2D([], [], color="k", lw=1.2, ls="--", label="$X_{g,y}$")]
+    if structure:
+        lines[0].set_label(lines[0].get_label().replace(", imposed ground motion", ", ground"))
+        lines += [Line2D([], [], color=STROKE_COLOUR, lw=1.2, label="$u_x$, stroke" if two else "$u$, stroke")]
+        if two:
+            lines.append(Line2D([], [], color=STROKE_COLOUR, lw=1.2, ls="--", label="$u_y$"))
     lines += [Line2D([], [], **_line(m, models), label=_title(m)) for m in models]
     return _complete(fig, "Time histories at the study's history points", caption, [lines, _event_handles(events)])
 
 
 def _share_time(col, ylabels, spatial=False):
     """One time axis for the panels of a point, labelled at the bottom; quantities on the left (the
-    tilt for θ² under bidirectional motion)."""
-    for ax in col[1:]:
-        ax.sharex(col[0])
-    for ax in col[:-1]:
+    tilt for θ² under bidirectional motion). A structure's loop, below them, has axes of its own."""
+    timed = col[:len(HISTORY_ROWS)]
+    for ax in timed[1:]:
+        ax.sharex(timed[0])
+    for ax in timed[:-1]:
         ax.tick_params(labelbottom=False)
-    col[-1].set_xlabel("t (s)")
+    timed[-1].set_xlabel("t (s)")
     if ylabels:
-        for ax, (key, name, _, unit) in zip(col, HISTORY_ROWS):
+        for ax, (key, name, _, unit) in zip(timed, HISTORY_ROWS):
             ax.set_ylabel(f"{'tilt of the pad' if spatial and key == 'theta2' else name} ({unit})")
+        if len(col) > len(HISTORY_ROWS):
+            col[-1].set_ylabel("device force F/W (-)")
 
 
 def _unused(axs, n, rows):
@@ -217,6 +233,8 @@ def _history_column(col, label, runs, models):
             col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground[name].values, color="k", lw=1.2, ls=ls)
     else:
         col[0].plot(ground["t"].values, HISTORY_ROWS[0][2] * ground["Xg"].values, color="k", lw=1.2)
+    if has_structure(ground):
+        _structure(col, ground)
     events, notes = set(), []
     for slot, model in enumerate(m for m in models if m in runs):
         ds, style = runs[model], _line(model, models)
@@ -225,7 +243,7 @@ def _history_column(col, label, runs, models):
             ax.plot(t, factor * _history_values(ds, name), **style)
         for kind, time, tag in _events(ds):
             events.add(kind)
-            for ax in col:  # as wide as the model's curve: coinciding lines of two models stay visible
+            for ax in col[:len(HISTORY_ROWS)]:  # as wide as the model's curve: coinciding lines stay visible
                 ax.axvline(time, color=style["color"], zorder=style["zorder"] + 3,
                            **{**EVENT_LINE[kind], "lw": 0.8 * style["lw"]})
             side = 1 if slot % 2 and kind == "capacity" else -1  # a second model's ring tag right of its line
@@ -237,6 +255,8 @@ def _history_column(col, label, runs, models):
     for ax in col:
         ax.grid(True, color="0.9", lw=0.6)
         ax.axhline(0, color="0.6", lw=0.6, zorder=1)
+    for ax in col[len(HISTORY_ROWS):]:
+        ax.axvline(0, color="0.6", lw=0.6, zorder=1)
     wrapped = [textwrap.fill(note, width=int(15 * COLUMN_INCHES), subsequent_indent="  ") for note in notes]
     col[0].set_title("\n".join([label, *wrapped]), loc="left", fontsize=9)
     return events
@@ -244,6 +264,20 @@ def _history_column(col, label, runs, models):
 
 def _bidirectional(ds):
     return ds.attrs.get("motion") == "bidirectional"
+
+
+def _structure(col, ds):
+    """The stroke beside the ground displacement (top panel) and the loop F/W against u (last panel):
+    x solid, y dashed. The structure is the models' common input: drawn once."""
+    t, factor = ds["t"].values, HISTORY_ROWS[0][2]
+    parts = (("_x", "-"), ("_y", "--")) if _bidirectional(ds) else (("", "-"),)
+    for suffix, ls in parts:
+        col[0].plot(t, factor * ds[f"stroke{suffix}"].values, color=STROKE_COLOUR, lw=1.2, ls=ls)
+        col[-1].plot(factor * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color=STROKE_COLOUR,
+                     lw=0.9, ls=ls)
+    col[-1].set_xlabel("stroke u (cm)")
+    col[-1].set_title(f"μ = {ds.attrs['structure_friction']:g}, ζ = {ds.attrs['structure_damping']:g}, "
+                      f"T = {ds.attrs['structure_period_s']:.3g} s", fontsize=8, loc="left")
 
 
 def _history_values(ds, name):

@@ -10,6 +10,7 @@ from ..mechanics import runs
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
+from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.summaries import SUMMARIES
 from ..results import variable
 from .combine import axis_variable, study_attrs
@@ -28,7 +29,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         mine = dts == dt
         group, times = cases[mine], grid.times(dt)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
-        ground = grid.ground_motion(group, times)
+        ground, own = grid.imposed(group, times)
         try:
             part = runs.summaries(model, grid.geometry(group), ground, grid.theta2_0_of(group),
                                   azimuth=grid.azimuth_of(group), normals=study.normals, options=study.options,
@@ -37,9 +38,9 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             index = getattr(err, "index", None)
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
-        for name, values in part.items():
+        for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
-    data = {name: variable(("case",), v, *SUMMARIES[name]) for name, v in out.items()}
+    data = {name: variable(("case",), v, *{**SUMMARIES, **STRUCTURE_SUMMARIES}[name]) for name, v in out.items()}
     for flag in ("capacity_exceeded", "failed"):
         data[flag].data = data[flag].data.astype(np.int8)
     for name, v in grid.values(cases).items():
@@ -62,10 +63,13 @@ def history_mapping(study, i, model) -> dict:
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]
-    return {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
-            "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
-            "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
-            "capacity": study.capacity, "on_failure": study.options.on_failure}
+    mapping = {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
+               "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
+               "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
+               "capacity": study.capacity, "on_failure": study.options.on_failure}
+    if study.structure is not None:
+        mapping["structure"] = {k: float(point.get(k, getattr(study.structure, k))) for k in ("friction", "damping")}
+    return mapping
 
 
 def history_case(study, i, model) -> Case:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import excitation_from, geometry_from, newton_from
+from ..case import excitation_from, geometry_from, newton_from, structure_from
 from ..checks import CaseError, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step
 from ..mechanics.capacity import CAPACITY_POLICIES
@@ -16,6 +16,7 @@ from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
 from ..mechanics.models import MODELS
 from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
+from ..mechanics.structure import Structure, StructureError
 from ..paper.prototypes import TABLE1
 from ..schema import errors as schema_errors
 from ..schema import schema
@@ -25,7 +26,9 @@ from .grid import PLATE3_FOLLOWS, Grid
 #: (degrees) turns a one-component excitation into bidirectional motion along it, ``component``
 #: (x, y or both) keeps one or both components of a two-component one
 EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "component")
-AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + ("theta2_0", "dt")
+#: the isolated structure's parameters (``structure``; sweeping one gives a study a structure)
+STRUCTURE_AXES = ("friction", "damping")
+AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
 #: sweep axes whose values are names, not numbers
 CATEGORICAL = ("prototype", "component")
 #: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
@@ -48,7 +51,7 @@ def axis_units(name):
         return None
     if name in ANGLES or name in ("theta2_0", "azimuth"):
         return "degree"
-    return {"omega": "rad s-1", "scale": "1", "dt": "s"}.get(name, "m")
+    return {"omega": "rad s-1", "scale": "1", "dt": "s", "friction": "1", "damping": "1"}.get(name, "m")
 
 
 def axis_values(spec, key) -> np.ndarray:
@@ -99,6 +102,7 @@ class Study:
     marks: dict = field(default_factory=dict)
     histories: list = field(default_factory=list)
     animate: list = field(default_factory=list)  # indices of the histories to animate
+    structure: Structure | None = None  # the base structure (None: the ground displacement is imposed)
 
     @cached_property
     def grid(self) -> Grid:
@@ -131,6 +135,7 @@ class Study:
             raise StudyError("normals: bidirectional ground motion runs the spatial models, which use signed normals "
                              f"only; got {config.get('normals')!r}")
         dt = _steps(config, axes, excitation)
+        structure = _structure(config.get("structure"), axes)
         options = newton_from(config.get("newton"))
         policy = choice(config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
         study = cls(name=name, description=description, prototype=dict(proto),
@@ -141,7 +146,7 @@ class Study:
                     chunk_size=_chunk_size(config.get("chunk_size", "auto"), axes),
                     capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES),
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
-                    base=base)
+                    base=base, structure=structure)
         study.marks = _marks(config.get("marks", {}), axes)
         _check_grid(study.grid)
         histories = config.get("histories", [])
@@ -229,6 +234,31 @@ def _steps(config, axes, excitation) -> float | None:
     for i, value in enumerate(axes.get("dt", [])):
         check_step(float(value), excitation, f"sweep.dt[{i}]")
     return check_step(config["dt"], excitation, "dt") if "dt" in config else None
+
+
+def _structure(value, axes) -> Structure | None:
+    """The study's base structure: its ``structure`` key, or one made by sweeping friction (with damping
+    0 unless given); every swept value checked."""
+    swept = [k for k in STRUCTURE_AXES if k in axes]
+    if value is None and not swept:
+        return None
+    if value is None:
+        value = {}
+    if not isinstance(value, dict):
+        raise StudyError(f"structure: expected a mapping {{friction, damping}}, got {value!r}")
+    if "friction" not in value:
+        if "friction" not in axes:
+            raise StudyError("structure.friction: missing: give the device's friction coefficient, or sweep it "
+                             "(sweep.friction)")
+        value = {**value, "friction": float(axes["friction"][0])}
+    base = structure_from(value)
+    for key in swept:
+        for i, v in enumerate(axes[key]):
+            try:
+                Structure(**{**vars(base), key: float(v)})
+            except StructureError as err:
+                raise StudyError(str(err).replace(f"structure.{key}", f"sweep.{key}[{i}]")) from None
+    return base
 
 
 def _chunk_size(chunk, axes) -> int:
