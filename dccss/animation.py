@@ -39,7 +39,7 @@ from .files import write_atomic
 from .mechanics.constraints import Q_NAMES
 from .mechanics.kinematics import CORNERS, interpenetration
 from .mechanics.models import REGISTRY
-from .results import MODEL_TITLES, geometry_from_attrs
+from .results import MODEL_TITLES, geometry_from_attrs, has_structure
 from .viewer import DPI, FIGSIZE, AnimationError, is_real, open_result, run_command, run_notes  # noqa: F401
 
 FORMATS = (".gif", ".html", ".mp4")
@@ -327,7 +327,10 @@ class Scene:
         t, ds = self.t, self.ds
         rise = ds["rise"].values if "rise" in ds else self.q["Ry3"] - self.q["Ry3"][0]
         rest = self.q["Ry3"] - rise
-        series = [("$X_g$ (cm)", 100 * (ds["Xg"].values if "Xg" in ds else self.q["Rx1"]), None),
+        structure = has_structure(ds)
+        ground = ("$X_g$ (grey), stroke $u$ (cm)", 100 * ds["stroke"].values, None) if structure else \
+            ("$X_g$ (cm)", 100 * (ds["Xg"].values if "Xg" in ds else self.q["Rx1"]), None)
+        series = [ground,
                   (r"$\theta^2$ (°)", self.q["theta2"], self.qs["theta2"] if self.stick else None),
                   ("rise of RB3 (cm)", 100 * rise, 100 * (self.qs["Ry3"] - rest) if self.stick else None)]
         self.trace = []
@@ -335,7 +338,9 @@ class Scene:
             ax = self.fig.add_axes(box)
             if stick is not None and t.size > 1:
                 ax.plot(*step_path(t, end, stick), color=STICK_COLOUR, lw=0.6, alpha=0.6)
-            ax.plot(t, end, color="k", lw=1.3)
+            if structure and not self.trace:  # the ground beside the stroke
+                ax.plot(t, 100 * ds["Xg"].values, color="0.55", lw=1.0)
+            ax.plot(t, end, color="tab:purple" if structure and not self.trace else "k", lw=1.3)
             ax.set_xlim(t[0], t[-1] if t[-1] > t[0] else t[0] + 1e-3)
             ax.set_xlabel("t (s)", labelpad=1)
             ax.set_ylabel(label, labelpad=2)
@@ -387,6 +392,8 @@ class Scene:
                           bbox=dict(fc="#fff4f0", ec="tab:red", lw=0.6, pad=1.5))
         self.status = {}
         for row, y in zip(_STATUS[:2 if self.stick else 1], _STATUS_Y):
+            if has_structure(self.ds):  # the device's motion is the stroke: RB1 moves by -u
+                row = {**row, "Xg": ("$u$ =", row["Xg"][1])} if "Xg" in row else row
             self.status |= {key: self._add(_field(self.fig, x, y, label, fontsize=9.5))
                             for key, (label, x) in row.items()}
         if self.stick:
@@ -484,9 +491,9 @@ class Scene:
                 sdot.set_data([], [])
 
     def _status(self, n, sticking):
-        values = {"t": f"{self.t[n]:{self.tfmt}} s", "step": f"{self.steps[n]}",
-                  "Xg": f"{100 * self.q['Rx1'][n]:+.2f} cm", "theta2": f"{self.q['theta2'][n]:+.2f}°",
-                  "rise": f"{self.trace[2][3][n]:+.2f} cm"}
+        motion = -100 * self.q["Rx1"][n] if has_structure(self.ds) else 100 * self.q["Rx1"][n]  # u, or X_g
+        values = {"t": f"{self.t[n]:{self.tfmt}} s", "step": f"{self.steps[n]}", "Xg": f"{motion:+.2f} cm",
+                  "theta2": f"{self.q['theta2'][n]:+.2f}°", "rise": f"{self.trace[2][3][n]:+.2f} cm"}
         if self.stick:
             theta2, rise, d = sticking or (None, None, None)
             values |= {"diagonal_stick": DIAGONAL_NAMES[d] if d in (0, 1) else "\u2013",

@@ -93,6 +93,11 @@ def rim(centre, axis, radius, k=73):
     return (centre[None, :] + radius * (np.cos(beta)[:, None] * u + np.sin(beta)[:, None] * w))[:, :2]
 
 
+def ground_label(ds) -> str:
+    """The label of RB1's path in the plan: the ground, or minus the stroke of a structure."""
+    return "RB1 relative to RB3: $-u$" if has_structure(ds) else "ground $X_g$"
+
+
 def draw_plan(ax, v: View, g, n, *, history=True, colour="tab:orange", ground_label="ground $X_g$"):
     """Plan view at step n (cm): the rings of RB1 (moving with the ground) and RB3, the pad's two rims
     and, with ``history``, the path of RB1 (labelled ``ground_label``) and the pad centre's path up to n."""
@@ -195,7 +200,7 @@ def figure(ds, at=None, title=None):
     grid = fig.add_gridspec(3 + structure, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0) + (0.95,) * structure)
     plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
     trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
-    draw_plan(plan, v, g, steps[-1], ground_label="RB1 relative to RB3: $-u$" if structure else "ground $X_g$")
+    draw_plan(plan, v, g, steps[-1], ground_label=ground_label(ds))
     plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
     drawing.legend_on(plan, fontsize=8, loc="best")
     draw_axis_trace(trace, v)
@@ -235,8 +240,9 @@ def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
     parts = (("_x", "-", " x"), ("_y", "--", " y")) if is_bidirectional(ds) else (("", "-", ""),)
     for suffix, ls, name in parts:
         history.plot(t, 100 * ds[f"Xg{suffix}"].values, color="k", lw=1.0, ls=ls, label=f"ground $X_g${name}")
-        history.plot(t, 100 * ds[f"stroke{suffix}"].values, color="tab:green", lw=1.2, ls=ls, label=f"stroke $u${name}")
-        loop.plot(100 * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color="tab:green", lw=0.9,
+        history.plot(t, 100 * ds[f"stroke{suffix}"].values, color="tab:purple", lw=1.2, ls=ls,
+                     label=f"stroke $u${name}")
+        loop.plot(100 * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color="tab:purple", lw=0.9,
                   ls=ls, label=f"$u${name}" if suffix else None)
     for n in steps:
         history.axvline(t[n], color="0.5", lw=0.7, ls=":")
@@ -333,7 +339,7 @@ class Scene:
         plan.set_xlabel("x (cm)")
         plan.set_ylabel("y (cm)")
         plan.set_title("plan: rings of RB1 (solid), RB3 (dashed)", fontsize=9)
-        self.ground_path = self._add(plan.plot([], [], color="0.55", lw=0.9, label="ground $X_g$")[0])
+        self.ground_path = self._add(plan.plot([], [], color="0.55", lw=0.9, label=ground_label(ds))[0])
         self.pad_path = self._add(plan.plot([], [], color="tab:orange", lw=1.1, label="pad centre")[0])
         self.rings = [self._add(plan.add_patch(Circle((0, 0), 100 * r, fill=False, ec="0.35", lw=1.0, ls=ls)))
                       for r, ls in ((ring1, "-"), (ring3, "--"))]

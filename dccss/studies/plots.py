@@ -51,7 +51,7 @@ SUMMARY_VARIABLES = [
     ("stroke_max_abs", "max |stroke u| of the structure", 100.0, "cm"),
     ("shear_ratio_max_abs", "max |F/W| of the device", 1.0, "-"),
 ]
-STROKE_COLOUR = "tab:green"
+STROKE_COLOUR = "tab:purple"
 #: (history variable, label, factor to plot units, plot unit)
 HISTORY_ROWS = [
     ("Xg", "ground displacement $X_g$", 100.0, "cm"),
@@ -270,6 +270,8 @@ def _structure(col, ds):
     """The stroke beside the ground displacement (top panel) and the loop F/W against u (last panel):
     x solid, y dashed. The structure is the models' common input: drawn once."""
     t, factor = ds["t"].values, HISTORY_ROWS[0][2]
+    if col[0].get_ylabel():
+        col[0].set_ylabel(f"ground $X_g$, stroke $u$ ({HISTORY_ROWS[0][3]})")
     parts = (("_x", "-"), ("_y", "--")) if _bidirectional(ds) else (("", "-"),)
     for suffix, ls in parts:
         col[0].plot(t, factor * ds[f"stroke{suffix}"].values, color=STROKE_COLOUR, lw=1.2, ls=ls)
