@@ -36,11 +36,12 @@ Format (lengths in m, angles in degrees, times in s)::
     on_failure: error      # optional: a solver failure stops with an error (default), or mark: the
                            # history is written up to the failure and marked (failed, failure_time_s)
     id: my-case            # optional, recorded in the dataset
-    structure: {friction: 0.05, damping: 0.0}
+    structure: {friction: 0.05, damping: 0.0, friction_on: device}
                            # optional: a rigid superstructure on the device, driven by the ground's
                            # acceleration (dccss.mechanics.structure): the device undergoes its stroke
                            # (RB1 moves by minus the stroke relative to RB3); without it, the ground
-                           # displacement itself is imposed, the superstructure held still in space
+                           # displacement itself is imposed, the superstructure held still in space;
+                           # friction_on: surfaces reads friction as each sliding surface's coefficient
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.models import MODELS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
-from .mechanics.structure import Structure, StructureError
+from .mechanics.structure import FRICTION_ON, Structure, StructureError
 from .paper.prototypes import TABLE1
 from .schema import errors as schema_errors
 from .schema import schema
@@ -240,7 +241,8 @@ def structure_from(value, key="structure") -> Structure | None:
     check_keys(value, key, tuple(STRUCTURE["required"]), STRUCTURE_OPTIONAL)
     value = {**STRUCTURE_OPTIONAL, **value}
     try:
-        return Structure(*(number(value[k], f"{key}.{k}") for k in ("friction", "damping")))
+        return Structure(*(number(value[k], f"{key}.{k}") for k in ("friction", "damping")),
+                         friction_on=choice(value["friction_on"], f"{key}.friction_on", FRICTION_ON))
     except StructureError as err:
         raise CaseError(str(err).replace("structure.", f"{key}.", 1)) from None
 
@@ -260,6 +262,12 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     geometry = geometry_from(m["prototype"])
     excitation = excitation_from(m["excitation"], base, geometry)
     dt = check_step(m["dt"], excitation, "dt")
+    structure = structure_from(m["structure"])
+    if structure is not None:
+        try:
+            structure.device_friction(geometry)
+        except StructureError as err:
+            raise CaseError(str(err)) from None
     case = Case(geometry=geometry, excitation=excitation, dt=dt,
                 model=choice(m["model"], "model", MODELS),
                 theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
@@ -267,7 +275,7 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 parameters_hash=parameters_hash(mapping),
                 capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
                 on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES),
-                structure=structure_from(m["structure"]))
+                structure=structure)
     # the checks above word each error best; the schema has the last word
     problems = schema_errors("case", mapping)
     if problems:

@@ -55,7 +55,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if structure is None:
         imposed = excitation.displacement(times)
     else:
-        response = respond(excitation.ground_acceleration(), times, geometry.L, structure)
+        response = respond(excitation.ground_acceleration(), times, geometry, structure)
         imposed = 0.0 - (response.stroke[:, 0] if excitation.components == 1 else response.stroke)
     run = runs.history(model, geometry, imposed, theta2_0,
                        azimuth=float(getattr(excitation, "azimuth", 0.0)), normals=normals, options=options,
@@ -68,7 +68,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                              normals=normals, tol=options.tol, attrs=attrs)
     if response is not None:
         ds = ds.assign(structure_variables(response, excitation.components, run.steps))
-        ds.attrs.update(structure.attrs(geometry.L))
+        ds.attrs.update(structure.attrs(geometry))
         ds.attrs["imposed_motion"] = ("minus the stroke: RB1 relative to RB3 is -u, u the superstructure's "
                                       "displacement relative to the ground")
     ds.attrs["capacity_policy"] = capacity

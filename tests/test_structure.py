@@ -2,6 +2,7 @@
 ground acceleration of every excitation, and the stroke driving the pad."""
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -215,7 +216,7 @@ def test_a_sine_drives_the_structure_with_its_second_derivative():
     # linear interpolation between 4000 samples a period: (2π / 4000)² / 8 of the peak
     assert np.max(np.abs(ground.at(t)[:, 0] - exact)) <= 0.9 * (2 * np.pi / 4000) ** 2 / 8 * 1.0001
     # a displacement below the threshold a = μ g never moves it; the structure starts at rest
-    r = respond(ground, t, L, Structure(0.1))
+    r = respond(ground, t, SimpleNamespace(L=L), Structure(0.1))
     assert np.all(r.stroke == 0.0)
 
 
@@ -279,8 +280,11 @@ CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic
     ({"friction": 0.0}, r"structure\.friction: 0\.0 is outside 0 < μ < 1"),
     ({"friction": 1.2}, r"structure\.friction: 1\.2 is outside"),
     ({"friction": 0.05, "damping": -0.1}, r"structure\.damping: -0\.1 is outside 0 <= ζ < 1"),
-    ({"friction": 0.05, "mass": 1.0}, r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction'\]"),
+    ({"friction": 0.05, "mass": 1.0}, r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction', 'friction_on'\]"),
     ({"damping": 0.05}, r"structure: missing key\(s\) \['friction'\]"),
+    ({"friction": 0.05, "friction_on": "pad"}, r"structure\.friction_on: must be one of \['device', 'surfaces'\]"),
+    ({"friction": 0.95, "friction_on": "surfaces"}, r"structure\.friction: 0\.95 on each surface is a device friction "
+                                                    r"1\.044 = μs \(R1 \+ R3\) / L, outside 0 < μ < 1"),
     (0.05, r"structure: expected a mapping"),
 ])
 def test_a_case_file_refuses_a_bad_structure_naming_the_key(structure, message):
@@ -288,6 +292,36 @@ def test_a_case_file_refuses_a_bad_structure_naming_the_key(structure, message):
 
     with pytest.raises(CaseError, match=message):
         case_from({**CASE, "structure": structure}, Path(RECORDS))
+
+
+def test_a_surfaces_friction_is_the_device_friction_times_R1_plus_R3_over_L():
+    from pathlib import Path
+
+    geometry = Geometry.from_degrees(**TABLE1["DFP1"])
+    surfaces = Structure(0.04, friction_on="surfaces")
+    assert surfaces.device_friction(geometry) == pytest.approx(0.04 * (geometry.R1 + geometry.R3) / geometry.L,
+                                                               rel=1e-15)
+    a = case_from({**CASE, "structure": {"friction": 0.04, "friction_on": "surfaces"}}, Path(RECORDS)).run()
+    mu = 0.04 * 2.0 / geometry.L
+    b = case_from({**CASE, "structure": {"friction": mu}}, Path(RECORDS)).run()
+    assert np.array_equal(a["stroke"].values, b["stroke"].values)
+    assert a.attrs["structure_friction"] == mu and a.attrs["structure_friction_given"] == 0.04
+    assert a.attrs["structure_friction_on"] == "surfaces"
+
+
+def test_the_work_argument_behind_the_surfaces_reading_holds_on_the_compliant_model():
+    """Friction on the surfaces works on the arcs the pad slides, (R1 + R3) |dθ²|; the device's on the
+    stroke |du|. Along a compliant history the two agree to the pad's tilt: (R1 + R3) Σ|Δθ²| = Σ|Δu|
+    (R1 + R3) / L up to the factor 1 / cos θ² (at most 1 / cos of the largest tilt)."""
+    from pathlib import Path
+
+    geometry = Geometry.from_degrees(**TABLE1["DFP1"])
+    ds = case_from({**CASE, "structure": {"friction": 0.05}}, Path(RECORDS)).run()
+    arcs = (geometry.R1 + geometry.R3) * np.sum(np.abs(np.diff(np.radians(ds["theta2"].values))))
+    stroke = (geometry.R1 + geometry.R3) / geometry.L * np.sum(np.abs(np.diff(ds["stroke"].values)))
+    largest = np.radians(np.max(np.abs(ds["theta2"].values)))
+    assert stroke <= arcs * (1 + 1e-6) and arcs <= stroke / np.cos(largest)
+    assert arcs / stroke - 1 > 1e-4  # the tilt's share is seen
 
 
 # --- the stroke drives the pad -------------------------------------------------------------------

@@ -38,7 +38,7 @@ def test_friction_and_damping_sweep_the_structure_of_each_case():
                 from dccss.excitation import Sine
 
                 sine = Sine(amplitude, 3.0, 4.0)
-                r = respond(sine.ground_acceleration(), study.grid.times(0.01), study.grid.geometry([0]).L[0],
+                r = respond(sine.ground_acceleration(), study.grid.times(0.01), study.grid.pendulums([0])[0],
                             Structure(mu, zeta))
                 case = ds.sel(friction=mu, damping=zeta, amplitude=amplitude, model="stick_slip")
                 assert float(case["stroke_max_abs"]) == np.max(np.abs(r.stroke))
@@ -96,7 +96,7 @@ def test_a_record_pair_study_drives_each_component_through_the_structure(tmp_pat
     from dccss.mechanics.structure import Ground
 
     g = study.excitation.excitation.x.ground_acceleration()
-    r = respond(Ground(g.time, 2.0 * g.a0, 2.0 * g.a1), t, float(study.grid.geometry([0]).L[0]), Structure(0.04))
+    r = respond(Ground(g.time, 2.0 * g.a0, 2.0 * g.a1), t, study.grid.pendulums([0])[0], Structure(0.04))
     # (the component runs as two-component motion with y = 0: the circular interaction's integrator,
     # equal to the exact one-component solution to 1e-9 m)
     assert np.allclose(imposed[:, 1, 0], 0.0 - r.stroke[:, 0], rtol=0, atol=1e-9)

@@ -54,30 +54,55 @@ class StructureError(ValueError):
     """A structure's parameters are out of range; the message names the key."""
 
 
+#: what a structure's ``friction`` is the coefficient of: the device (μ, the force at zero stroke is
+#: μ W), or each of its two sliding surfaces (μs; the device's is then μs (R¹ + R³) / L)
+FRICTION_ON = ("device", "surfaces")
+
+
 @dataclass(frozen=True)
 class Structure:
-    """A rigid superstructure on the device: the device's friction coefficient μ (``friction``,
-    0 < μ < 1: the force at zero stroke is μ W) and the viscous damping ratio ζ (``damping``,
+    """A rigid superstructure on the device: the friction coefficient (``friction``, 0 < μ < 1) of the
+    device (``friction_on="device"``: the force at zero stroke is μ W) or of each sliding surface
+    (``"surfaces"``, see :meth:`device_friction`), and the viscous damping ratio ζ (``damping``,
     0 <= ζ < 1, of the pendulum's frequency)."""
 
     friction: float
     damping: float = 0.0
+    friction_on: str = "device"
 
     def __post_init__(self):
-        for key, value, low, low_ok in (("friction", self.friction, 0.0, False), ("damping", self.damping, 0.0, True)):
+        for key, value, low_ok in (("friction", self.friction, False), ("damping", self.damping, True)):
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
                 raise StructureError(f"structure.{key}: expected a number, got {type(value).__name__} {value!r}")
             value = float(value)
-            inside = (value >= low if low_ok else value > low) and value < 1.0
+            inside = (value >= 0.0 if low_ok else value > 0.0) and value < 1.0
             if not (math.isfinite(value) and inside):
                 allowed = "0 <= ζ < 1" if low_ok else "0 < μ < 1"
                 raise StructureError(f"structure.{key}: {value!r} is outside {allowed}")
             object.__setattr__(self, key, value)
+        if self.friction_on not in FRICTION_ON:
+            raise StructureError(f"structure.friction_on: must be one of {list(FRICTION_ON)}, got {self.friction_on!r}")
 
-    def attrs(self, L) -> dict:
-        """netCDF attributes of the structure on a device of pendulum length L (m)."""
-        return {"structure_friction": self.friction, "structure_damping": self.damping,
-                "structure_pendulum_length_m": float(L), "structure_period_s": period(L)}
+    def device_friction(self, geometry) -> float:
+        """The device's friction coefficient μ on ``geometry`` (its L, R1, R3).
+
+        With ``friction_on="surfaces"``, ``friction`` is the coefficient μs of each sliding surface and
+        μ = μs (R¹ + R³) / L: a rigid pad that turns by dθ about both sphere centres slides R¹ dθ on
+        RB1 and R³ dθ on RB3 under the normal force W (to first order in the tilt), so friction
+        does the work μs W (R¹ + R³) dθ while the stroke grows by L dθ."""
+        if self.friction_on == "device":
+            return self.friction
+        mu = self.friction * float(geometry.R1 + geometry.R3) / float(geometry.L)
+        if not mu < 1.0:
+            raise StructureError(f"structure.friction: {self.friction!r} on each surface is a device friction "
+                                 f"{mu:.4g} = μs (R1 + R3) / L, outside 0 < μ < 1")
+        return mu
+
+    def attrs(self, geometry) -> dict:
+        """netCDF attributes of the structure on ``geometry`` (a device of pendulum length L)."""
+        return {"structure_friction": self.device_friction(geometry), "structure_damping": self.damping,
+                "structure_friction_on": self.friction_on, "structure_friction_given": self.friction,
+                "structure_pendulum_length_m": float(geometry.L), "structure_period_s": period(geometry.L)}
 
 
 def period(L) -> float:
@@ -149,10 +174,11 @@ def summarize(response: Response) -> dict:
             "shear_ratio_max_abs": float(np.max(np.linalg.norm(response.shear_ratio, axis=1)))}
 
 
-def respond(ground: Ground, times, L, structure: Structure) -> Response:
-    """The structure's response to ``ground`` at ``times`` (s, within the ground's span), on a device
-    of pendulum length L (m); at rest (u = u̇ = 0) at ``ground.time[0]``."""
-    return solve(ground, times, L, structure.friction, structure.damping)
+def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
+    """The structure's response to ``ground`` at ``times`` (s, within the ground's span), on the device
+    ``geometry`` (its pendulum length L, and R1, R3 for a surfaces' friction); at rest (u = u̇ = 0) at
+    ``ground.time[0]``."""
+    return solve(ground, times, float(geometry.L), structure.device_friction(geometry), structure.damping)
 
 
 def solve(ground: Ground, times, L, mu, zeta) -> Response:

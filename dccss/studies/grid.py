@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+from types import SimpleNamespace
+
 import numpy as np
 
 from ..excitation import step_times
@@ -85,9 +88,14 @@ class Grid:
         study, values = self.study, self.values(cases)
         if study.structure is None:
             return [None] * len(cases)
-        base = vars(study.structure)
-        return [type(study.structure)(**{**base, **{k: float(values[k][i]) for k in ("friction", "damping")
-                                                    if k in values}}) for i in range(len(cases))]
+        return [replace(study.structure, **{k: float(values[k][i]) for k in ("friction", "damping") if k in values})
+                for i in range(len(cases))]
+
+    def pendulums(self, cases) -> list:
+        """What a structure needs of each case's device: its pendulum length L and radii R1, R3 (m)."""
+        devices = self.geometry(cases)
+        L, R1, R3 = (np.broadcast_to(getattr(devices, k), (len(cases),)) for k in ("L", "R1", "R3"))
+        return [SimpleNamespace(L=float(L[i]), R1=float(R1[i]), R3=float(R3[i])) for i in range(len(cases))]
 
     def times(self, dt) -> np.ndarray:
         """The step times at step size dt (s)."""
@@ -102,17 +110,16 @@ class Grid:
         if self.study.structure is None:
             return self.ground_motion(cases, t), {}
         excitation, values = self.study.excitation, self.values(cases)
-        L = np.broadcast_to(self.geometry(cases).L, (len(cases),))
         out = np.zeros((len(t), len(cases), excitation.components))
         summaries = {name: np.zeros(len(cases)) for name in structure.SUMMARIES}
-        for i, mine in enumerate(self.structures(cases)):
+        for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
             own = {k: values[k][i] for k in excitation.parameters if k in values}
             factor = float(values["scale"][i]) if "scale" in values else 1.0
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
             ground = excitation.ground_acceleration(**own)
             ground = structure.Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
-            response = structure.respond(ground, t, float(L[i]), mine)
+            response = structure.respond(ground, t, device, mine)
             out[:, i] = 0.0 - response.stroke
             for name, value in structure.summarize(response).items():
                 summaries[name][i] = value

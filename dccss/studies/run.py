@@ -68,7 +68,8 @@ def history_mapping(study, i, model) -> dict:
                "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
                "capacity": study.capacity, "on_failure": study.options.on_failure}
     if study.structure is not None:
-        mapping["structure"] = {k: float(point.get(k, getattr(study.structure, k))) for k in ("friction", "damping")}
+        own = {k: float(point.get(k, getattr(study.structure, k))) for k in ("friction", "damping")}
+        mapping["structure"] = {**own, "friction_on": study.structure.friction_on}
     return mapping
 
 

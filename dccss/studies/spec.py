@@ -149,6 +149,7 @@ class Study:
                     base=base, structure=structure)
         study.marks = _marks(config.get("marks", {}), axes)
         _check_grid(study.grid)
+        _check_frictions(study.grid)
         histories = config.get("histories", [])
         if histories == "all":
             histories = [study.grid.point(i) for i in range(study.grid.n_cases)]
@@ -259,6 +260,20 @@ def _structure(value, axes) -> Structure | None:
             except StructureError as err:
                 raise StudyError(str(err).replace(f"structure.{key}", f"sweep.{key}[{i}]")) from None
     return base
+
+
+def _check_frictions(grid):
+    """Every case's device friction is below 1 (a surfaces' friction grows by (R1 + R3) / L); the first
+    case where it is not is named."""
+    if grid.study.structure is None or grid.study.structure.friction_on == "device":
+        return
+    cases = np.arange(grid.n_cases)
+    for i, (structure, device) in enumerate(zip(grid.structures(cases), grid.pendulums(cases))):
+        try:
+            structure.device_friction(device)
+        except StructureError as err:
+            where = ", ".join(f"{k}={v}" for k, v in grid.point(i).items())
+            raise StudyError(f"sweep point {where}: {err}") from None
 
 
 def _chunk_size(chunk, axes) -> int:
