@@ -66,3 +66,12 @@ def test_plain_xarray_reads_time_as_float_seconds(reproduction):
         assert float(ds["t"][0]) == 0.0 and float(ds["t"][-1]) == pytest.approx(1.0)
         assert np.allclose(np.diff(ds["t"].values), 0.001)
         assert not any(v.dtype.kind in "mM" for v in ds.variables.values())  # no datetimes or timedeltas
+
+
+def test_the_isolated_structure_study_files_pass_the_cf_checker(shipped_study, tmp_path):
+    work = shipped_study("isolated_structure")
+    files = sorted((work / "results/studies").rglob("*.nc"))
+    assert len(files) == 2 * 4 + 1 + 4  # chunks (4 per model), the combined file, the histories
+    for path in files:
+        findings = check(path, tmp_path / "report.json")
+        assert findings["high_priorities"] == [] and findings["medium_priorities"] == [], (path.name, findings)
