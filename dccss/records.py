@@ -49,12 +49,9 @@ Processing, in this order
 -------------------------
 1. Units: the samples are converted to SI (g = 9.80665 m/s²); ``scale`` then multiplies them
    (any finite non-zero number; a negative one flips the record).
-2. ``window=(t0, t1)`` keeps the samples with t0 <= t <= t1 (a bound within 1e-9 dt of a sample
-   counts as on it). The record keeps its own time axis: ``t_start`` is the first kept sample (= t0 on
-   the sample grid), not 0.
-3. Velocity: an acceleration record is integrated, v = ∫ a dt from v = 0 at ``t_start``
+2. Velocity: an acceleration record is integrated, v = ∫ a dt from v = 0 at the first sample
    (``scipy.integrate.cumulative_trapezoid``); a velocity record is its samples.
-4. Baseline: ``"linear"`` (default) subtracts from v its least-squares straight line p(t),
+3. Baseline: ``"linear"`` (default) subtracts from v its least-squares straight line p(t),
    ``"quadratic"`` its least-squares parabola, ``"none"`` nothing. Removing p from v is the same
    as removing p'(t) from the acceleration, i.e. a constant (linear) acceleration offset for the
    linear (quadratic) baseline; the corrected acceleration a - p' is what ``acceleration``
@@ -63,14 +60,21 @@ Processing, in this order
    fit (minimising ∫ (v - p)² dt) and keeps the O(dt²) accuracy of step 3: an unweighted fit
    (``scipy.signal.detrend``) counts the two end samples fully and leaves an O(dt) offset in the
    velocity, i.e. a drift of the displacement. The corrected velocity need not be 0 at
-   ``t_start``.
-5. Displacement: X_g = ∫ v dt from X_g = 0 at ``t_start`` (``cumulative_trapezoid``). The
+   the first sample.
+4. Displacement: X_g = ∫ v dt from X_g = 0 at the first sample (``cumulative_trapezoid``). The
    displacement is not detrended; but since the fitted trend has a constant term, the weighted
-   residual v - p sums to zero, so with a baseline X_g also returns to 0 at ``t_end`` (no
+   residual v - p sums to zero, so with a baseline X_g also returns to 0 at the record's end (no
    permanent ground offset: the correction cannot represent one).
+5. ``window=(t0, t1)`` then keeps the samples with t0 <= t <= t1 (a bound within 1e-9 dt of a
+   sample counts as on it): the whole record is integrated and corrected first, so **a window
+   never changes the motion inside it** (a window of the raw samples would fit the baseline to
+   the window alone and move X_g by centimetres). The record keeps its own time axis:
+   ``t_start`` is the first kept sample (= t0 on the sample grid), not 0, and X_g and its
+   velocity there need not be 0 (the models start from the device's compatible configuration at
+   X_g(t_start); a structure starts at rest relative to the ground there).
 
-A displacement record is not integrated: X_g is its samples as recorded (after units, scale and
-window; so X_g(t_start) is the first kept sample, not necessarily 0), and its velocity is their
+A displacement record is not integrated: X_g is its samples as recorded (after units and scale,
+then the window; so X_g(t_start) is the first kept sample, not necessarily 0), and its velocity is their
 second-order central difference (``numpy.gradient``, as ``dccss.excitation.Table``). Its baseline
 is ``"none"``: ``"linear"`` and ``"quadratic"`` act on an integrated velocity and are refused.
 Integrating each record only as far as needed keeps a processed velocity or displacement from
@@ -645,7 +649,7 @@ class Record:
     source : what the record is (a file name); named in errors and in ``attrs()``.
     sha256 : SHA-256 of the source file's bytes, recorded in ``attrs()`` (``from_file`` sets it).
     scale : finite non-zero factor on the samples.
-    window : optional (t0, t1) (s): keep only the samples in that interval.
+    window : optional (t0, t1) (s): keep only the samples in that interval (after processing the whole record).
     baseline : "linear", "quadratic" or "none"; default "linear", and "none" (the only one
         allowed) for a displacement record.
 
@@ -698,13 +702,13 @@ class Record:
             raise ValueError(f"record {source!r}: has {time.size} sample(s); at least {MIN_SAMPLES} are needed")
         cut = _window(time, window, source)
         self.window = (float(window[0]), float(window[1])) if window is not None else None
-        time, samples = time[cut], samples[cut]
-        if time.size < MIN_SAMPLES:
-            raise ValueError(f"record {source!r}: the window {window!r} s holds {time.size} sample(s); "
+        if time[cut].size < MIN_SAMPLES:
+            raise ValueError(f"record {source!r}: the window {window!r} s holds {time[cut].size} sample(s); "
                              f"at least {MIN_SAMPLES} are needed")
-        self.time = time
-        self.acceleration, self.velocity_samples, self.displacement_samples = _motion(
-            time, self.scale * (units.to_si * samples), quantity, self.baseline)
+        # the whole record is processed, then cut: a window never changes the motion inside it
+        motion = _motion(time, self.scale * (units.to_si * samples), quantity, self.baseline)
+        self.time = time[cut]
+        self.acceleration, self.velocity_samples, self.displacement_samples = (m[cut] for m in motion)
         self.warning = self._plausibility()
         if self.warning:
             warnings.warn(self.warning, RecordWarning, stacklevel=2)

@@ -280,7 +280,8 @@ CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic
     ({"friction": 0.0}, r"structure\.friction: 0\.0 is outside 0 < μ < 1"),
     ({"friction": 1.2}, r"structure\.friction: 1\.2 is outside"),
     ({"friction": 0.05, "damping": -0.1}, r"structure\.damping: -0\.1 is outside 0 <= ζ < 1"),
-    ({"friction": 0.05, "mass": 1.0}, r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction', 'friction_on'\]"),
+    ({"friction": 0.05, "mass": 1.0},
+     r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction', 'friction_on'\]"),
     ({"damping": 0.05}, r"structure: missing key\(s\) \['friction'\]"),
     ({"friction": 0.05, "friction_on": "pad"}, r"structure\.friction_on: must be one of \['device', 'surfaces'\]"),
     ({"friction": 0.95, "friction_on": "surfaces"}, r"structure\.friction: 0\.95 on each surface is a device friction "
