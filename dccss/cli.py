@@ -60,8 +60,10 @@ def warnings_of(ds) -> list[str]:
     """One line for each thing about a written history that its reader must know."""
     a, out = ds.attrs, []
     if "capacity_exceeded_at_s" in a:
+        moved = (f", RB1 {100 * a['capacity_exceeded_displacement_m']:.4g} cm from its start"
+                 if "capacity_exceeded_displacement_m" in a else "")
         out.append(f"the pad reaches the retaining ring of {a['capacity_exceeded_plate']} at "
-                   f"t = {a['capacity_exceeded_at_s']:.6g} s and passes it by up to "
+                   f"t = {a['capacity_exceeded_at_s']:.6g} s{moved} and passes it by up to "
                    f"{1e3 * a['capacity_exceeded_by_m']:.3g} mm (capacity: {a['capacity_policy']})")
     if "stopped_at_s" in a:
         out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "

@@ -31,8 +31,10 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         (the dataset ends at that step) or 'error' (raise CapacityError). In every case the
         attributes ``capacity_exceeded_at_s``, ``capacity_exceeded_plate`` (RB1 or RB3, the
         plate whose ring is reached first) and ``capacity_exceeded_by_m`` (how far the pad
-        passes a ring at most) say when, where and by how much; ``stopped_at_s`` says where
-        'stop' ended the history.
+        passes a ring at most) say when, where and by how much, and ``capacity_exceeded_displacement_m``
+        how far RB1 had moved from its start then (the ground's displacement, or the stroke);
+        ``stopped_at_s`` says where 'stop' ended the history. A step with no compatible configuration
+        (RB1 displaced from RB3 by L or more) is a failure under every capacity policy.
     on_failure : 'error' (a ConvergenceError) or 'mark': the dataset holds the history up to
         the last converged step, with the attributes ``failed`` = 1, ``failure_time_s`` (the
         step that failed) and ``failure_message``.
@@ -77,7 +79,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         ds.attrs.update(failure_time_s=float(times[run.steps]), failure_message=str(run.failure))
     if run.reached:
         ds.attrs.update(capacity_exceeded_at_s=run.reached["t"], capacity_exceeded_plate=run.reached["plate"],
-                        capacity_exceeded_by_m=run.reached["by"])
+                        capacity_exceeded_by_m=run.reached["by"],
+                        capacity_exceeded_displacement_m=run.reached["displacement"])
     if run.status == "stopped":
         ds.attrs["stopped_at_s"] = float(times[run.steps - 1])
     return ds

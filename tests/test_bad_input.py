@@ -61,7 +61,8 @@ CLI_ROWS = [
     ("record NaN", {"excitation": {"kind": "record", "file": "r.AT2"}}, {"r.AT2": SINE_AT2.replace(".2E-01", "nan")},
      2, "r.AT2"),
     ("capacity exceeded, policy error", {"excitation": {**CASE["excitation"], "amplitude": 0.45}, "capacity": "error"},
-     {}, 4, r"ring of RB1 at t = 0.03 s \(step 3; capacity R1 sin\(alpha1 - alpha21\) = 19.08 cm\)"),
+     {}, 4, r"ring of RB1 at t = 0.03 s \(step 3, RB1 moved by 35.25 cm; capacity R1 sin\(alpha1 - alpha21\) = "
+            r"19.08 cm\)"),
     ("solver failure", {"newton": {"tol": 1.0e-30, "max_iter": 2}}, {}, 3,
      "did not converge in sticking .*step 1, time 0.01 s"),
 ]

@@ -150,8 +150,11 @@ def test_cli_warns_once_when_a_ring_is_reached(tmp_path, policy, capsys):
     ring = [line for line in err if "retaining ring" in line]
     ds = xr.open_dataset(out)
     plate, when = ds.attrs["capacity_exceeded_plate"], ds.attrs["capacity_exceeded_at_s"]
+    moved = ds.attrs["capacity_exceeded_displacement_m"]
+    assert moved == pytest.approx(abs(ds["Xg"].values[int(round(when / 0.01))]), rel=1e-12)
     assert len(ring) == 1 and ring[0].startswith(f"dccss: warning: the pad reaches the retaining ring of {plate} "
-                                                 f"at t = {when:.6g} s and passes it by up to")
+                                                 f"at t = {when:.6g} s, RB1 {100 * moved:.4g} cm from its start "
+                                                 "and passes it by up to")
     assert f"(capacity: {policy})" in ring[0]
     cut = [line for line in err if "cut the history short" in line]
     if policy == "stop":
@@ -191,3 +194,22 @@ def test_progress_line_only_on_a_terminal(tmp_path):
         os.close(leader)
         assert run.returncode == 0
         assert ("dccss: step 2000/2000 (100 %)" in screen) == shown, screen
+
+
+@pytest.mark.parametrize("policy", ["continue", "stop"])
+def test_cli_refuses_to_write_motion_beyond_the_pendulum_length(tmp_path, policy, capsys):
+    """|X_g| beyond L = 1.82 m: no compatible configuration; before, `continue` wrote θ² = 97.6° and exit 0."""
+    far = {**CASE, "model": "compliant", "capacity": policy,
+           "excitation": {"kind": "sine", "amplitude": 2.0, "omega": 1.0, "duration": 2.0}}
+    out = tmp_path / "out.nc"
+    code = main(["run", str(write(tmp_path, far)), "-o", str(out)])
+    err = capsys.readouterr().err
+    if policy == "stop":  # the ring comes first: the history ends there, a result
+        assert code == 0 and xr.open_dataset(out).attrs["stopped_at_s"] < 0.5
+        return
+    assert code == 3 and not out.exists()
+    assert "no compatible configuration exists" in err and "pendulum length L = |C1C3| = 182 cm" in err
+    assert main(["run", str(write(tmp_path, {**far, "on_failure": "mark"})), "-o", str(out)]) == 0
+    ds = xr.open_dataset(out)
+    assert ds.attrs["failed"] == 1 and "no compatible configuration" in ds.attrs["failure_message"]
+    assert np.abs(ds["theta2"].values).max() < 90

@@ -80,3 +80,54 @@ def test_sweeps_go_to_the_planar_or_spatial_summaries():
 
 def assert_same(a, b):
     assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k], equal_nan=True) for k in a)
+
+
+# --- no compatible configuration: never a result ----------------------------------------------------
+#: RB1 driven 2 m from its start: past DFP1's pendulum length L = 1.82 m at t = 0.73 s
+FAR_TIMES = np.arange(0, 2.01, 0.01)
+FAR = 2.0 * np.sin(np.pi * FAR_TIMES / 2)
+
+
+@pytest.mark.parametrize("motion", ["planar", "spatial"])
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_a_step_beyond_the_pendulum_length_is_an_error_whatever_the_capacity_policy(motion, model):
+    from dccss.mechanics.capacity import IncompatibleMotion
+
+    X = FAR if motion == "planar" else np.stack([FAR * 0.6, -FAR * 0.8], axis=-1)
+    marked = runs.history(model, DFP1, X, times=FAR_TIMES, capacity="continue", on_failure="mark")
+    assert marked.status == "failed" and marked.steps <= 73
+    assert marked.steps == 73 or model == "stick_slip"  # compliant sliding follows the motion to the end of reach
+    if marked.steps < 73:  # the solver gave up first, past the ring (stick-slip), and says so
+        assert not isinstance(marked.failure, IncompatibleMotion)
+        assert "Before the solver failed, the pad reached the retaining ring" in marked.message
+        assert "RB1 moved by" in marked.message
+        return
+    assert "no compatible configuration" in marked.message and isinstance(marked.failure, IncompatibleMotion)
+    with pytest.raises(IncompatibleMotion, match=r"at t = 0\.73 s \(step 73\) RB1 is displaced by 182\.3 cm .*"
+                                                 r"L = \|C1C3\| = 182 cm or more from RB3: no compatible"):
+        runs.history(model, DFP1, X, times=FAR_TIMES, capacity="continue")
+    # the pad passes the ring long before: "stop" ends the history there, and that is a result
+    stopped = runs.history(model, DFP1, X, times=FAR_TIMES, capacity="stop")
+    assert stopped.status == "stopped" and stopped.steps < 20 and stopped.failure is None
+
+
+def test_the_ring_message_says_how_far_rb1_had_moved():
+    with pytest.raises(CapacityError, match=r"retaining ring of RB3 at t = 0\.12 s \(step 12, RB1 moved by 37\.48 cm; "
+                                            r"capacity R3 sin\(alpha3 - alpha23\) = 19\.08 cm\)"):
+        runs.history("compliant", DFP1, FAR, times=FAR_TIMES, capacity="error")
+
+
+def test_a_sweep_marks_or_names_the_case_beyond_reach():
+    from dccss.mechanics.capacity import IncompatibleMotion
+    from dccss.mechanics.newton import NewtonOptions
+
+    X = np.sin(np.pi * FAR_TIMES / 2)[:, None] * np.array([0.1, 2.0, 0.2])
+    with pytest.raises(IncompatibleMotion, match=r"in the case at batch index \(1,\): at t = 0\.73 s") as caught:
+        runs.summaries("compliant", DFP1, X, times=FAR_TIMES)
+    assert caught.value.index == (1,)
+    out = runs.summaries("compliant", DFP1, X, times=FAR_TIMES, options=NewtonOptions(on_failure="mark"))
+    assert list(out["failed"]) == [False, True, False] and np.isnan(out["theta2_max_abs"][1])
+    assert out["failure_time"][1] <= 0.73 and np.isfinite(out["theta2_max_abs"][[0, 2]]).all()
+    spatial_X = np.stack([X, np.zeros_like(X)], axis=-1)
+    out = runs.summaries("compliant", DFP1, spatial_X, times=FAR_TIMES, options=NewtonOptions(on_failure="mark"))
+    assert list(out["failed"]) == [False, True, False] and out["failure_time"][1] == 0.73

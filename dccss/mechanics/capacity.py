@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .newton import ConvergenceError
+
 CAPACITY_POLICIES = ("continue", "stop", "error")
 PLATES = ("RB1", "RB3")
 
@@ -18,20 +20,58 @@ class CapacityError(ValueError):
     """The pad reached a retaining ring (the excitation exceeds the device capacity)."""
 
 
-def ring_reached(clearance_1, clearance_3, t) -> dict | None:
+class IncompatibleMotion(ConvergenceError):
+    """No compatible configuration exists: RB1 is displaced from RB3 by the pendulum length L or more
+    (the pad would have to turn past 90 degrees); no policy writes such a step as a result."""
+
+
+def beyond_reach(geometry, Xg, theta2_0=0.0, azimuth=0.0, *, spatial=False):
+    """The first step at which |R3 - X_g(t_n)| >= L, R3 the horizontal place of RB3 at the start
+    (X_g(t_0) + L sin theta2_0 along ``azimuth``): no compatible configuration exists there. X_g is
+    (T, ...) planar or (T, ..., 2) ``spatial``, the cases (if any) broadcast against the geometry's
+    fields; returns -1 where every step is within reach (an int for one case)."""
+    Xg = np.asarray(Xg, dtype=float)
+    L, s = np.asarray(geometry.L, dtype=float), np.sin(np.asarray(theta2_0, dtype=float))
+    if spatial:
+        h = np.stack(np.broadcast_arrays(np.cos(azimuth), np.sin(azimuth)), axis=-1)
+        distance = np.linalg.norm(Xg[0] + (L * s)[..., None] * h - Xg, axis=-1)
+    else:
+        distance = np.abs(Xg[0] + L * s - Xg)
+    out = np.where((distance >= L).any(axis=0), np.argmax(distance >= L, axis=0), -1)
+    return int(out) if out.ndim == 0 else out
+
+
+def reach_message(geometry, Xg, n, t) -> str:
+    """Why step n (at time t) has no compatible configuration, and what the device can take."""
+    Xg = np.asarray(Xg, dtype=float)
+    moved = float(np.linalg.norm(np.atleast_1d(Xg[n] - Xg[0])))
+    return (f"at t = {float(t):.6g} s (step {n}) RB1 is displaced by {100 * moved:.4g} cm from its start, the "
+            f"device's pendulum length L = |C1C3| = {100 * float(geometry.L):.4g} cm or more from RB3: no compatible "
+            f"configuration exists (the pad would have to turn past 90 degrees). The motion is beyond what the "
+            f"device's geometry can take, far past its retaining rings (plate capacities R1 sin(alpha1 - alpha21) = "
+            f"{100 * float(geometry.capacity1):.4g} cm and R3 sin(alpha3 - alpha23) = "
+            f"{100 * float(geometry.capacity3):.4g} cm): lower the excitation.")
+
+
+def ring_reached(clearance_1, clearance_3, t, Xg=None) -> dict | None:
     """When, where and by how much a history passes a retaining ring (None if it does not).
 
     Returns {"t": first time a clearance is < 0 (s), "plate": "RB1" or "RB3" (the one passed
     first; the deeper one if both at once), "by": the largest distance beyond a ring over the
-    history (m), "step": the index of that first time}.
+    history (m), "step": the index of that first time} and, given the imposed motion X_g (T,) or
+    (T, 2), "displacement": how far RB1 had moved from its start then (m; the ground's, or the
+    stroke of a structure).
     """
     gap = np.stack([clearance_1, clearance_3], axis=-1)
     beyond = (gap < 0).any(axis=-1)
     if not beyond.any():
         return None
     n = int(np.argmax(beyond))
-    return {"t": float(t[n]), "step": n, "plate": PLATES[int(np.argmin(gap[n]))],
-            "by": float(-np.nanmin(gap))}
+    out = {"t": float(t[n]), "step": n, "plate": PLATES[int(np.argmin(gap[n]))], "by": float(-np.nanmin(gap))}
+    if Xg is not None:
+        Xg = np.asarray(Xg, dtype=float)
+        out["displacement"] = float(np.linalg.norm(np.atleast_1d(Xg[n] - Xg[0])))
+    return out
 
 
 def capacity_message(geometry, reached, tense="reaches") -> str:
@@ -40,8 +80,9 @@ def capacity_message(geometry, reached, tense="reaches") -> str:
     j = reached["plate"][-1]
     capacity = geometry.capacity1 if j == "1" else geometry.capacity3
     passes = "passes" if tense == "reaches" else "passed"
+    moved = f", RB1 moved by {100 * reached['displacement']:.4g} cm" if "displacement" in reached else ""
     return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
-            f"(step {reached['step']}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
+            f"(step {reached['step']}{moved}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
             f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
 
 

@@ -12,6 +12,9 @@ applied here:
 * ``on_failure``: "error" raises the solver's ConvergenceError, explained by the ring the pad passed
   before it if it did (beyond the ring the model describes no real device and a smaller dt does not
   help); "mark" keeps what converged and says where it failed.
+* A step with no compatible configuration (RB1 displaced from RB3 by the pendulum length L or more,
+  ``capacity.beyond_reach``) is a failure whatever ``capacity`` says: ``capacity.IncompatibleMotion``
+  (a ConvergenceError), raised or marked as ``on_failure`` says; the run ends before it.
 
 ``history`` returns a ``Run``: the history up to where it ended, with its status and message, the
 ring it reached and the failure; ``summaries`` the per-case summaries of a sweep
@@ -25,7 +28,17 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from . import backend, models
-from .capacity import CAPACITY_POLICIES, capacity_message, case_error, history_error, mark_failures, ring_reached
+from .capacity import (
+    CAPACITY_POLICIES,
+    IncompatibleMotion,
+    beyond_reach,
+    capacity_message,
+    case_error,
+    history_error,
+    mark_failures,
+    reach_message,
+    ring_reached,
+)
 from .geometry import Geometry
 from .kinematics import NORMALS, corner_diagnostics
 from .newton import FAILURE_POLICIES, ConvergenceError, NewtonOptions
@@ -108,23 +121,32 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
     times = np.arange(len(Xg), dtype=float) if times is None else np.asarray(times, dtype=float)
     stop = capacity != "continue"
     failure = None
+    # a step with no compatible configuration ends the run, whatever the policies: nothing past it is a result
+    limit = beyond_reach(geometry, Xg, theta2_0, azimuth, spatial=motion == "spatial")
+    if 0 <= limit < 2:
+        raise IncompatibleMotion(reach_message(geometry, Xg, limit, times[limit]))
+    steps = len(Xg) if limit < 0 else limit
     try:
         if motion == "spatial":
-            out = spatial.run(model, geometry, Xg, theta2_0, azimuth=azimuth, options=options, times=times,
-                              stop_at_ring=stop)
+            out = spatial.run(model, geometry, Xg[:steps], theta2_0, azimuth=azimuth, options=options,
+                              times=times[:steps], stop_at_ring=stop)
         else:
-            out = _planar(model, geometry, Xg, theta2_0, normals, options, times, stop, progress)
+            out = _planar(model, geometry, Xg[:steps], theta2_0, normals, options, times[:steps], stop, progress)
     except ConvergenceError as err:
         out = getattr(err, "history", None)
-        failure = _explain(err, geometry, out, motion, times)
+        failure = _explain(err, geometry, out, motion, times, Xg)
         if on_failure == "error" or out is None:
             raise failure from None
     run = Run(out, motion, "completed", "", None, failure)
     if motion == "spatial" and progress is not None:
         progress(run.steps - 1, len(Xg) - 1)
-    reached = ring_reached(*clearances(out, geometry, motion), times[:run.steps])
+    reached = ring_reached(*clearances(out, geometry, motion), times[:run.steps], Xg[:run.steps])
     if reached and capacity == "error":
         raise history_error(geometry, reached)
+    if failure is None and run.steps == limit:
+        failure = IncompatibleMotion(reach_message(geometry, Xg, limit, times[limit]))
+        if on_failure == "error":
+            raise failure
     if failure is not None:
         status, message = "failed", str(failure)
     elif reached and capacity == "stop" and run.steps < len(Xg):
@@ -166,12 +188,12 @@ def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring
     return models.collect(steps)
 
 
-def _explain(err, geometry, out, motion, times):
+def _explain(err, geometry, out, motion, times, Xg):
     """A solver failure, prefixed with the ring the pad passed before it (if it did)."""
     if out is None:
         return err
     gaps = clearances(out, geometry, motion)
-    reached = ring_reached(gaps[0], gaps[1], times[:len(gaps[0])])
+    reached = ring_reached(gaps[0], gaps[1], times[:len(gaps[0])], Xg[:len(gaps[0])])
     if reached is None:
         return err
     return err.with_hint(
@@ -190,8 +212,49 @@ def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed
     if np.ndim(Xg) == 3:
         return _spatial_summaries(model, geometry, np.asarray(Xg, dtype=float), theta2_0, azimuth, options, capacity,
                                   times, progress)
-    return summarize(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
-                     capacity=capacity, progress=progress)
+    Xg = np.asarray(Xg, dtype=float)
+    now = np.arange(len(Xg), dtype=float) if times is None else np.asarray(times, dtype=float)
+    limit = beyond_reach(geometry, Xg, theta2_0)
+    if options.on_failure == "error" and capacity == "continue" and (limit >= 0).any():
+        raise _unreachable(geometry, Xg, limit, now)
+    out = summarize(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
+                    capacity=capacity, progress=progress)
+    return _past_reach(out, geometry, Xg, limit, now, capacity, options.on_failure)
+
+
+def _unreachable(geometry, Xg, limit, now, cases=None) -> IncompatibleMotion:
+    """The error of the first case of a batch (of ``cases``, a mask) that goes beyond reach, naming its index."""
+    limit = np.asarray(limit)
+    index = tuple(int(i) for i in np.argwhere(limit >= 0 if cases is None else cases)[0])
+    one = Geometry(**{f.name: float(np.broadcast_to(getattr(geometry, f.name), limit.shape)[index])
+                      for f in fields(geometry)})
+    n = int(limit[index])
+    err = IncompatibleMotion(f"in the case at batch index {index}: "
+                             + reach_message(one, np.broadcast_to(Xg, (len(Xg),) + limit.shape)[(slice(None), *index)],
+                                             n, now[n]))
+    err.index = index
+    return err
+
+
+def _past_reach(out, geometry, Xg, limit, now, capacity, on_failure) -> dict:
+    """Summaries with the cases that go beyond reach marked failed there (unless a ring stopped them first)."""
+    beyond = np.broadcast_to(limit >= 0, np.shape(out["failed"]))
+    if not beyond.any():
+        return out
+    when = np.where(beyond, now[np.maximum(limit, 0)], np.nan)
+    stopped = (capacity != "continue") & (out["capacity_time"] <= when)
+    later = beyond & ~stopped & ~(out["failure_time"] < when)
+    if not later.any():
+        return out
+    if on_failure == "error":
+        raise _unreachable(geometry, Xg, np.broadcast_to(limit, beyond.shape), now, later)
+    out = {k: np.where(later, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
+           for k, v in out.items()}
+    out["failed"] = out["failed"] | later
+    out["failure_time"] = np.where(later, when, out["failure_time"])
+    out["capacity_time"] = np.where(later, np.nan, out["capacity_time"])
+    out["capacity_exceeded"] = np.where(later, False, out["capacity_exceeded"])
+    return out
 
 
 def _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity, times, progress):
