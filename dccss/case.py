@@ -262,6 +262,9 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     geometry = geometry_from(m["prototype"])
     excitation = excitation_from(m["excitation"], base, geometry)
     dt = check_step(m["dt"], excitation, "dt")
+    if excitation.components == 2 and m["normals"] != "signed":
+        raise CaseError(f"normals: two-component ground motion runs the spatial models, which use signed normals "
+                        f"only; got {m['normals']!r} (unsigned normals reproduce the paper's planar computation)")
     structure = structure_from(m["structure"])
     if structure is not None:
         try:

@@ -15,7 +15,8 @@ def number(value, key, *, positive=False):
         hint = ""
         try:
             float(value)
-            hint = " (YAML reads exponents without a decimal point, e.g. 1e-3, as strings: write 1.0e-3)"
+            hint = (" (YAML reads a number with an exponent but no decimal point or no sign, e.g. 1e-3 or 1.0e5, "
+                    "as a string: write 1.0e-3, 1.0e+5)")
         except ValueError:
             pass
         raise CaseError(f"{key}: expected a number, got the string {value!r}{hint}")

@@ -22,10 +22,22 @@ from .files import write_netcdf
 from .mechanics import backend
 from .mechanics.capacity import CapacityError
 from .mechanics.newton import ConvergenceError
+from .mechanics.structure import G
 
 
 def _summary(ds) -> str:
-    return _kinematics(ds) + (_structure(ds) if "structure_friction" in ds.attrs else "")
+    return _kinematics(ds) + _record(ds.attrs) + (_structure(ds) if "structure_friction" in ds.attrs else "")
+
+
+def _record(a) -> str:
+    """The peaks of a record (each component of a pair) after processing, and the scale applied."""
+    parts = [("", "record_")] if "record_pga_m_per_s2" in a else \
+        [(f"{c}: ", f"record_{c}_") for c in "xy" if f"record_{c}_pga_m_per_s2" in a]
+    if not parts:
+        return ""
+    peaks = "; ".join(f"{label}PGA = {a[p + 'pga_m_per_s2'] / G:.3g} g, PGV = {100 * a[p + 'pgv_m_per_s']:.3g} cm/s, "
+                      f"PGD = {100 * a[p + 'pgd_m']:.3g} cm" for label, p in parts)
+    return f"; record {peaks} (scale {a[parts[0][1] + 'scale']:g})"
 
 
 def _structure(ds) -> str:
@@ -94,6 +106,19 @@ class _Progress:
             self.stream.flush()
 
 
+def _failed(args, kind, err, code) -> int:
+    """Say why the case failed, remove an older file at the output path (it is not this case's result)
+    and return the exit code."""
+    from pathlib import Path
+
+    path, note = Path(args.output), ""
+    if path.is_file():
+        path.unlink()
+        note = f" ({args.output}, an older result there, was removed: it is not this case's)"
+    print(f"dccss: {kind} in {args.case}: {err}{note}", file=sys.stderr)
+    return code
+
+
 def _warn_line(message, category, *args, **kwargs):
     return f"dccss: warning: {message}\n"
 
@@ -126,14 +151,11 @@ def main(argv=None) -> int:
     try:
         ds = load_case(args.case).run(progress=progress)
     except CaseError as err:
-        print(f"dccss: error in {args.case}: {err}", file=sys.stderr)
-        return 2
+        return _failed(args, "error", err, 2)
     except ConvergenceError as err:
-        print(f"dccss: solver failure in {args.case}: {err}", file=sys.stderr)
-        return 3
+        return _failed(args, "solver failure", err, 3)
     except CapacityError as err:
-        print(f"dccss: capacity exceeded in {args.case}: {err}", file=sys.stderr)
-        return 4
+        return _failed(args, "capacity exceeded", err, 4)
     finally:
         if progress is not None:
             progress.close()

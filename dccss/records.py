@@ -706,7 +706,11 @@ class Record:
             raise ValueError(f"record {source!r}: the window {window!r} s holds {time[cut].size} sample(s); "
                              f"at least {MIN_SAMPLES} are needed")
         # the whole record is processed, then cut: a window never changes the motion inside it
-        motion = _motion(time, self.scale * (units.to_si * samples), quantity, self.baseline)
+        with np.errstate(over="ignore", invalid="ignore"):
+            motion = _motion(time, self.scale * (units.to_si * samples), quantity, self.baseline)
+        if not all(np.isfinite(m).all() for m in motion):
+            raise ValueError(f"record {source!r}: scale {self.scale:g} makes the {quantity} overflow (its processed "
+                             f"samples are not finite); give a scale that keeps the motion physical")
         self.time = time[cut]
         self.acceleration, self.velocity_samples, self.displacement_samples = (m[cut] for m in motion)
         self.warning = self._plausibility()
@@ -865,6 +869,10 @@ class RecordPair:
             if not isinstance(p, (str, Path)):
                 raise ValueError(f"record pair: file {i} must be a path, got {p!r}")
         x, y = (Record.from_file(p, scale=scale, window=window, baseline=baseline, units=units) for p in paths)
+        if x.sha256 == y.sha256:
+            same = "the same file" if Path(paths[0]).resolve() == Path(paths[1]).resolve() else "two identical files"
+            raise ValueError(f"record pair: {str(paths[0])!r} and {str(paths[1])!r} are {same}: a pair is two "
+                             f"different horizontal components of one station")
         return cls(x, y)
 
     @property

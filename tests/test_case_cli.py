@@ -2,8 +2,10 @@
 
 import os
 import pty
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import netCDF4
 import numpy as np
@@ -213,3 +215,52 @@ def test_cli_refuses_to_write_motion_beyond_the_pendulum_length(tmp_path, policy
     ds = xr.open_dataset(out)
     assert ds.attrs["failed"] == 1 and "no compatible configuration" in ds.attrs["failure_message"]
     assert np.abs(ds["theta2"].values).max() < 90
+
+
+RECORDS = Path(__file__).resolve().parents[1] / "config/studies/records"
+
+
+def _records(tmp_path):
+    for name in ("synthetic.AT2", "synthetic_y.AT2"):
+        (tmp_path / name).write_bytes((RECORDS / name).read_bytes())
+
+
+def test_the_summary_line_states_the_records_peaks_and_scale(tmp_path, capsys):
+    _records(tmp_path)
+    one = {**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": 2.0}}
+    assert main(["run", str(write(tmp_path, one)), "-o", str(tmp_path / "a.nc")]) == 0
+    line = capsys.readouterr().out
+    assert "; record PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm (scale 2)" in line
+    pair = {**one, "excitation": {**one["excitation"], "file": ["synthetic.AT2", "synthetic_y.AT2"]}}
+    assert main(["run", str(write(tmp_path, pair)), "-o", str(tmp_path / "b.nc")]) == 0
+    assert "; record x: PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm; y: PGA = 0.6 g" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("changes, message", [
+    # before: a Python traceback and exit 1
+    ({"normals": "unsigned", "excitation": {"kind": "sine", "amplitude": 0.1, "omega": 6.0, "duration": 0.2,
+                                            "azimuth": 30.0}},
+     "normals: two-component ground motion runs the spatial models, which use signed normals only"),
+    # before: accepted
+    ({"excitation": {"kind": "record", "file": ["synthetic.AT2", "synthetic.AT2"]}},
+     "record pair: .* are the same file: a pair is two different horizontal components"),
+    # before: "PGA is nan g"
+    ({"excitation": {"kind": "record", "file": "synthetic.AT2", "scale": 1.0e+308}},
+     "scale 1e\\+308 makes the acceleration overflow"),
+])
+def test_defects_found_with_real_records_are_refused_with_exit_2(tmp_path, changes, message, capsys):
+    _records(tmp_path)
+    out = tmp_path / "out.nc"
+    out.write_text("an older result")
+    assert main(["run", str(write(tmp_path, {**CASE, **changes})), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert re.search(message, err), err
+    # before: the older file stayed, as if it were this case's result
+    assert not out.exists() and f"({out}, an older result there, was removed: it is not this case's)" in err
+
+
+def test_two_identical_files_are_not_a_pair(tmp_path):
+    _records(tmp_path)
+    (tmp_path / "copy.AT2").write_bytes((tmp_path / "synthetic.AT2").read_bytes())
+    with pytest.raises(CaseError, match="are two identical files"):
+        case_from({**CASE, "excitation": {"kind": "record", "file": ["synthetic.AT2", "copy.AT2"]}}, tmp_path)
