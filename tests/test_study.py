@@ -288,3 +288,19 @@ def test_animations_are_histories():
     assert Study.from_config(tiny(animate="all")).animate == [0]
     with pytest.raises(CaseError, match=r"animate\[0\]: \{'alpha21': 8.0, 'h2': 0.15\} is not one of the histories"):
         Study.from_config(tiny(animate=[{"alpha21": 8.0, "h2": 0.15}]))
+
+
+@pytest.mark.parametrize("sweep, mark, drawn", [
+    ({"alpha21": [8.0, 10.0], "h2": [0.12, 0.15]}, {"alpha21": 10.0},
+     r"\['alpha21', 'h2'\]; give a value for \['h2'\]"),
+    ({"alpha21": [8.0, 10.0], "prototype": ["DFP1", "DFP2"]}, {"prototype": "DFP1"}, r"\['alpha21'\]"),
+])
+def test_a_mark_that_cannot_be_placed_is_refused(sweep, mark, drawn):
+    """Before, a mark not naming every drawn axis was silently not drawn."""
+    from dccss.studies import StudyError
+
+    config = {"study": {"name": "m"}, "prototype": "DFP1", "dt": 0.01, "models": ["compliant"],
+              "excitation": {"kind": "sine", "amplitude": 0.1, "omega": 6.0, "duration": 0.2},
+              "sweep": sweep, "marks": {"here": mark}}
+    with pytest.raises(StudyError, match=rf"marks\.here: gives .* but the plots draw the summaries over {drawn}"):
+        Study.from_config(config)

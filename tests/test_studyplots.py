@@ -302,16 +302,27 @@ def test_time_step_axis_on_a_log_scale():
         assert lo == pytest.approx(0.001 / np.sqrt(10)) and hi == pytest.approx(0.1 * np.sqrt(10))
 
 
-def test_more_than_two_axes_map_the_first_two_numeric_and_say_so():
+def test_more_than_two_axes_map_the_first_two_numeric_with_a_row_per_prototype():
+    """A further categorical axis gets rows of its own (before: only its first category was drawn)."""
     ds = study({"prototype": ["DFP1", "DFP2"], "alpha21": [5.0, 10.0], "h2": [0.1, 0.15, 0.2]})
     fig = studyplots.maps(ds, {}, "caption")
     title = figure_title(fig)
-    assert r"maps over $\alpha^{21}$ and $h^{2}$" in title
-    assert "prototype = DFP1 (first of 2 values, the others not drawn)" in title
-    ax = next(ax for ax in fig.axes if ax.get_title() == "Stick-Slip: max |θ²|")
-    (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
-    expected = ds["theta2_max_abs"].sel(model="stick_slip", prototype="DFP1").values.T
-    assert np.allclose(mesh.get_array().reshape(expected.shape), expected)
+    assert r"maps over $\alpha^{21}$ and $h^{2}$ per prototype" in title and "not drawn" not in title
+    for proto in ("DFP1", "DFP2"):
+        ax = next(ax for ax in fig.axes if ax.get_title() == f"Stick-Slip, {proto}: max |θ²|")
+        (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+        expected = ds["theta2_max_abs"].sel(model="stick_slip", prototype=proto).values.T
+        assert np.allclose(mesh.get_array().reshape(expected.shape), expected)
+    # a further numeric axis is still shown at its first value, and the title says so
+    ds = study({"alpha21": [5.0, 10.0], "h2": [0.1, 0.15, 0.2], "theta2_0": [0.0, 1.0]})
+    assert "(first of 2 values, the others not drawn)" in figure_title(studyplots.maps(ds, {}, "caption"))
+
+
+def test_a_bidirectional_study_labels_the_rotation_as_the_tilt():
+    ds = study({"alpha21": [5.0, 10.0], "h2": [0.1, 0.15]})
+    ds.attrs["excitation_components"] = 2
+    titles = [ax.get_title() for ax in studyplots.maps(ds, {}, "caption").axes]
+    assert "Stick-Slip: max tilt of the pad" in titles and not any("θ²" in t for t in titles)
 
 
 def test_an_axis_of_one_value_is_a_note():

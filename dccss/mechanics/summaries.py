@@ -35,6 +35,11 @@ SUMMARIES = {
     "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
     **{name: spec for entry in models.REGISTRY.values() for name, spec in entry.summaries.items()},
 }
+#: the rotation summaries under bidirectional motion, where |theta2| is the pad axis's tilt (``spatial.summary``)
+TILT_SUMMARIES = {
+    "theta2_max_abs": ("degree", "largest tilt of the pad axis from the vertical, at the end of a step"),
+    "theta2_end": ("degree", "residual tilt of the pad axis at t_end"),
+}
 #: summaries that only some models have (NaN for the others in a combined study)
 MODEL_SPECIFIC = tuple(name for entry in models.REGISTRY.values() for name in entry.summaries)
 

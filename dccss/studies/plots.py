@@ -2,8 +2,9 @@
 
 ``maps`` draws the combined study dataset (dimension ``model`` plus one per sweep axis):
 
-* two or more numeric axes: maps over the first two, one row per model, the cells where the pad
-  reached a retaining ring or the solver failed hatched; further axes at their first value;
+* two or more numeric axes: maps over the first two, one row per model (and per category of a further
+  categorical axis), the cells where the pad reached a retaining ring or the solver failed hatched;
+  further numeric axes at their first value;
 * one numeric axis: curves with markers, one per model (and per category of ``prototype``);
 * a categorical axis only (``prototype``): one mark per model and category at integer positions.
 
@@ -31,6 +32,7 @@ from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
 from ..mechanics.summaries import MODEL_SPECIFIC
 from ..results import MODEL_TITLES, has_structure
+from .spec import layout
 
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
 OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))
@@ -370,18 +372,26 @@ def maps(ds, marks: dict, caption: str) -> Figure:
         failed cells hatched in grey; one numeric axis: curves with markers (one per model, and
         per category of a categorical axis), capacity points boxed in red, failed points marked
         ✕ on the bottom edge; a categorical axis only: marks per category at integer positions.
-        Any further axis is shown at its first value, as the title says.
+        Maps give a further categorical axis (a prototype) rows of its own; any other further axis
+        is shown at its first value, as the title says.
     """
     ds = ds.assign(interpenetration_max=ds[[f"I_{c}_max" for c in "ABCD"]].to_array().max("variable"))
     kind, drawn, fixed = _plan(ds)
+    # maps: a further categorical axis (a prototype) gets rows of its own, one per category and model
+    group = next((n for n, size in fixed.items() if kind == "map" and size > 1 and _categorical(ds, n)), None)
+    fixed = {n: size for n, size in fixed.items() if n != group}
     ds = ds.isel({name: 0 for name in fixed})
     ds = ds.sortby([name for name in drawn if not _categorical(ds, name)])
     models = _ordered([str(m) for m in ds["model"].values])
-    variables = [v for v in SUMMARY_VARIABLES if v[0] in ds and any(_defined(ds, v[0], m) for m in models)]
+    tilt = ds.attrs.get("excitation_components") == 2  # bidirectional: |θ²| is the pad axis's tilt
+    variables = [(name, "max tilt of the pad" if tilt and name == "theta2_max_abs" else label, factor, unit)
+                 for name, label, factor, unit in SUMMARY_VARIABLES
+                 if name in ds and any(_defined(ds, name, m) for m in models)]
     if kind == "map":
-        fig, axs = new_figure((4.2 * len(variables) + 0.6, 3.5 * len(models) + 1.6), len(models), len(variables))
-        legend = _draw_maps(fig, axs, ds, drawn, marks, variables, models)
-        what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}"
+        rows = [(m, {group: str(v)} if group else {}) for m in models for v in (ds[group].values if group else [0])]
+        fig, axs = new_figure((4.2 * len(variables) + 0.6, 3.5 * len(rows) + 1.6), len(rows), len(variables))
+        legend = _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group)
+        what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}" + (f" per {_symbol(group)}" if group else "")
     else:
         fig, axs = new_figure((4.1 * len(variables), 5.0), 1, len(variables))
         draw = _draw_lines if kind == "lines" else _draw_categories
@@ -413,17 +423,7 @@ def _plan(ds):
     categorical axis then gives one curve per category), a categorical axis alone marks per category.
     """
     names = ds.attrs["sweep_axes"].split()
-    spread = [n for n in names if ds.sizes[n] > 1]
-    numeric = [n for n in spread if not _categorical(ds, n)]
-    categorical = [n for n in spread if _categorical(ds, n)]
-    if len(numeric) >= 2:
-        kind, drawn = "map", numeric[:2]
-    elif numeric:
-        kind, drawn = "lines", numeric + categorical[:1]
-    elif categorical:
-        kind, drawn = "categories", categorical[:1]
-    else:  # a single sweep point
-        kind, drawn = "categories" if _categorical(ds, names[0]) else "lines", names[:1]
+    kind, drawn = layout({n: ds.sizes[n] for n in names}, {n for n in names if _categorical(ds, n)})
     return kind, drawn, {n: ds.sizes[n] for n in names if n not in drawn}
 
 
@@ -447,9 +447,10 @@ def _edges(centres, log):
     return np.exp(edges) if log else edges
 
 
-def _flags(ds, model, *dims):
-    """(capacity exceeded, failed) boolean arrays of a model, dimensions ordered as ``dims``."""
-    sel = ds.sel(model=model)
+def _flags(ds, model, *dims, where=None):
+    """(capacity exceeded, failed) boolean arrays of a model (at ``where``: {axis: value}), dimensions
+    ordered as ``dims``."""
+    sel = ds.sel(model=model, **(where or {}))
     return tuple(sel[f].transpose(*dims).values.astype(bool) for f in ("capacity_exceeded", "failed"))
 
 
@@ -468,23 +469,24 @@ def _undefined(ax, label, model):
             transform=ax.transAxes, color="0.4")
 
 
-def _draw_maps(fig, axs, ds, drawn, marks, variables, models):
-    """One row per model, one column per variable (a colour bar per column); the legend's groups of handles."""
+def _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group=None):
+    """One row per model (and category of ``group``: ``rows`` of (model, {group: category})), one column
+    per variable (a colour bar per column); the legend's groups of handles."""
     x, y = drawn
     logs = [name in LOG_AXES for name in drawn]
     xe, ye = (_edges(_plot_values(ds, n), log) for n, log in zip(drawn, logs))
     for c, (name, label, factor, unit) in enumerate(variables):
-        values = factor * ds[name].transpose("model", x, y).values
+        values = factor * ds[name].values
         finite = values[np.isfinite(values)]
         vmin, vmax = (finite.min(), finite.max()) if finite.size else (0.0, 1.0)
         mesh = None
-        for r, model in enumerate(models):
-            ax, data = axs[r, c], factor * ds[name].sel(model=model).transpose(x, y).values
+        for r, (model, where) in enumerate(rows):
+            ax, data = axs[r, c], factor * ds[name].sel(model=model, **where).transpose(x, y).values
             if not _defined(ds, name, model):
                 _undefined(ax, label, model)
                 continue
             mesh = ax.pcolormesh(xe, ye, data.T, cmap="viridis", vmin=vmin, vmax=vmax)
-            capacity, failed = _flags(ds, model, x, y)
+            capacity, failed = _flags(ds, model, x, y, where=where)
             _hatch(ax, capacity, xe, ye, "capacity_exceeded", CAPACITY_COLOUR, "///", "none")
             _hatch(ax, failed, xe, ye, "failed", FAILED_COLOUR, "xx", "0.85")
             _map_marks(ax, ds, drawn, marks)
@@ -494,10 +496,10 @@ def _draw_maps(fig, axs, ds, drawn, marks, variables, models):
             ax.set_ylim(ye[0], ye[-1])
             ax.set_xlabel(_axis_label(ds, x))
             ax.set_ylabel(_axis_label(ds, y))
-            ax.set_title(f"{_title(model)}: {label}", fontsize=10)
+            ax.set_title(f"{_title(model)}{''.join(f', {v}' for v in where.values())}: {label}", fontsize=10)
         if mesh is not None:
             fig.colorbar(mesh, ax=list(axs[:, c]), label=f"{label} ({unit})", shrink=0.9)
-    cap_label, fail_label = _flag_labels(ds, models, drawn)
+    cap_label, fail_label = _flag_labels(ds, models, [*drawn, group] if group else drawn)
     flags = [Patch(fc="none", ec=CAPACITY_COLOUR, hatch="///", label=cap_label),
              Patch(fc="0.85", ec=FAILED_COLOUR, hatch="xx", label=fail_label)]
     if any(_mark_point(ds, drawn, p) for p in marks.values()):

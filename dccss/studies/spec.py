@@ -298,10 +298,38 @@ def _point(point, key, axes) -> dict:
     return out
 
 
+def layout(sizes: dict, categorical) -> tuple[str, list]:
+    """(kind, drawn axes) of a study's summary plots, from its axes' sizes (in sweep order) and which of
+    them are categorical: axes of one value are never drawn; two numeric axes make maps over the
+    first two, one numeric axis curves against it (a categorical axis then gives one curve per
+    category), a categorical axis alone marks per category."""
+    names = list(sizes)
+    spread = [n for n in names if sizes[n] > 1]
+    numeric = [n for n in spread if n not in categorical]
+    groups = [n for n in spread if n in categorical]
+    if len(numeric) >= 2:
+        return "map", numeric[:2]
+    if numeric:
+        return "lines", numeric + groups[:1]
+    if groups:
+        return "categories", groups[:1]
+    return ("categories" if names[0] in categorical else "lines"), names[:1]
+
+
 def _marks(marks, axes) -> dict:
     if not isinstance(marks, dict):
         raise StudyError(f"marks: expected a mapping of labels to sweep points, got {marks!r}")
-    return {str(label): _point(p, f"marks.{label}", axes) for label, p in marks.items()}
+    kind, drawn = layout({k: len(v) for k, v in axes.items()}, CATEGORICAL)
+    placed = drawn if kind == "map" else drawn[:1]  # where a mark goes: a point on a map, a line at an x value
+    out = {}
+    for label, p in marks.items():
+        point = _point(p, f"marks.{label}", axes)
+        missing = [name for name in placed if name not in point]
+        if missing:
+            raise StudyError(f"marks.{label}: gives {sorted(point)} but the plots draw the summaries over {placed}; "
+                             f"give a value for {missing} too (a mark is drawn where all of them are given)")
+        out[str(label)] = point
+    return out
 
 
 def _histories(histories, axes, dt) -> list:
