@@ -21,14 +21,21 @@ def axis_variable(dims, name, values):
     return variable(dims, values, units, f"sweep axis {name}")
 
 
-def study_attrs(study, model=None) -> dict:
-    """Global attributes of a study's datasets (not the description: only the plots show it)."""
+def study_attrs(study, model=None, record=None) -> dict:
+    """Global attributes of a study's datasets (not the description: only the plots show it); with a
+    record axis, the excitation's are those of ``record`` (a chunk's) or, combined, only its kind."""
+    if study.records:
+        ground = {"excitation": study.excitation.kind, "records": " ".join(study.records)}
+        if record is not None:
+            ground = {**study.records[record].attrs(), "record": record}
+    else:
+        ground = study.excitation.attrs()
     out = global_attrs(f"dccss study {study.name}", f"study {study.name}", study=study.name, normals=study.normals,
                        theta2_0_deg=study.theta2_0, capacity_policy=study.capacity,
                        on_failure=study.options.on_failure, symmetric=int(study.symmetric),
                        sweep_axes=" ".join(study.axes),
                        **({"dt_s": study.dt} if study.dt is not None and "dt" not in study.axes else {}),
-                       **{f"prototype_{k}": float(v) for k, v in study.prototype.items()}, **study.excitation.attrs(),
+                       **{f"prototype_{k}": float(v) for k, v in study.prototype.items()}, **ground,
                        **({} if study.structure is None else
                           {f"structure_{k}": v for k, v in vars(study.structure).items()}))
     if model:
@@ -38,14 +45,14 @@ def study_attrs(study, model=None) -> dict:
 
 def combine(study, chunks: dict) -> xr.Dataset:
     """One dataset of all summaries: dimensions ``model`` and one per sweep axis. ``chunks`` maps
-    each model to its chunk datasets (any order); a summary another model lacks is NaN."""
+    each model to its chunk datasets (any order); a summary another model lacks is NaN. With a
+    ``record`` axis, each chunk holds one record's cases (attribute ``record``, cases numbered within
+    it); the dataset then also holds each record's peaks and the suite statistics (``statistics``)."""
     grid, dims = study.grid, tuple(study.axes)
     per_model = []
     for model in study.models:
-        ds = xr.concat(chunks[model], dim="case").sortby("case")
-        if ds.sizes["case"] != grid.n_cases:
-            raise ValueError(f"{model}: {ds.sizes['case']} cases in the chunks, expected {grid.n_cases}")
-        ds = ds.drop_vars(list(study.axes))
+        ds = _cases(study, model, chunks[model])
+        ds = ds.drop_vars([n for n in study.axes if n in ds])
         variables = {}
         for name in {**SUMMARIES, **STRUCTURE_SUMMARIES}:
             if name in ds:
@@ -59,5 +66,98 @@ def combine(study, chunks: dict) -> xr.Dataset:
     coords = {name: axis_variable((name,), name, vals) for name, vals in study.axes.items()}
     coords["model"] = xr.Variable(("model",), np.array(study.models, dtype=object), {"long_name": "kinematic model"})
     out = xr.concat(per_model, dim="model").assign_coords(coords)
+    if study.records:
+        out = out.assign(record_peaks(study)).merge(statistics(out))
     out.attrs = study_attrs(study)
     return out
+
+
+def _cases(study, model, chunks) -> xr.Dataset:
+    """A model's chunks as one dataset over the flattened sweep index (``case``), every case once."""
+    grid = study.grid
+    if study.records:  # chunks number their cases within their record
+        by_record = {name: [c for c in chunks if c.attrs.get("record") == name] for name in grid.records}
+        parts = []
+        for r, name in enumerate(grid.records):
+            if not by_record[name]:
+                raise ValueError(f"{model}: no chunk of the record {name!r}")
+            part = xr.concat(by_record[name], dim="case")
+            parts.append(part.assign_coords(case=part["case"].values + r * grid.per_record))
+        ds = xr.concat(parts, dim="case").sortby("case")
+    else:
+        ds = xr.concat(chunks, dim="case").sortby("case")
+    if ds.sizes["case"] != grid.n_cases or not np.array_equal(ds["case"].values, np.arange(grid.n_cases)):
+        raise ValueError(f"{model}: {ds.sizes['case']} cases in the chunks, expected each of {grid.n_cases} once")
+    return ds
+
+
+#: each record's peaks after processing (variable, attribute of ``Record.attrs``, units, long name)
+PEAKS = (("record_pga", "pga_m_per_s2", "m s-2", "peak ground acceleration of the record, as processed"),
+         ("record_pgv", "pgv_m_per_s", "m s-1", "peak ground velocity of the record, as processed"),
+         ("record_pgd", "pgd_m", "m", "peak ground displacement of the record, as processed"))
+
+
+def record_peaks(study) -> dict:
+    """PGA, PGV and PGD of each record of the axis (of each component of a pair: dimension ``component``
+    of length 2 is not added; a pair's are the larger of its components') and its source files."""
+    out = {}
+    for name, attr, units, long_name in PEAKS:
+        values = []
+        for excitation in study.records.values():
+            a = _record_attrs(excitation)
+            keys = [k for k in a if k.endswith(attr) and k.startswith("record_")]
+            values.append(max(float(a[k]) for k in keys))
+        pair = " (the larger of a pair's components)" if study.excitation.components == 2 else ""
+        out[name] = xr.Variable(("record",), np.array(values), {"units": units, "long_name": long_name + pair})
+    sources = [" ".join(e) if isinstance(e, list) else e for e in study.record_entries.values()]
+    out["record_source"] = xr.Variable(("record",), np.array(sources, dtype=object),
+                                       {"long_name": "the record's file (a pair's two files, x then y)"})
+    return out
+
+
+def _record_attrs(excitation) -> dict:
+    while not hasattr(excitation, "attrs") or "record_npts" not in excitation.attrs():
+        excitation = excitation.excitation
+    return excitation.attrs()
+
+
+#: the suite statistics over the ``record`` dimension (EN 1998-1 4.3.3.4.3 and ASCE 7-22 17.3.4: the
+#: mean of the records' peaks; the 84th percentile of a lognormal fit, as fragility work uses)
+STATISTICS = ("mean", "median", "p84_lognormal", "max")
+
+
+def statistics(ds) -> xr.Dataset:
+    """Every summary reduced over ``record`` (each record's value is its own peak or end value):
+    ``<name>_suite`` with a ``statistic`` coordinate (STATISTICS: the mean, the median, the 84th
+    percentile of a lognormal fit exp(mean ln x + std ln x) (NaN where a value is not > 0) and the
+    largest), over the records that did not fail; ``records_capacity_exceeded`` and
+    ``records_failed``, the number of records whose pad reaches a ring or whose run fails, and
+    ``records_counted``, the number the statistics are over."""
+    out = {}
+    failed = ds["failed"].astype(bool)
+    ok = ~failed
+    for name, var in ds.data_vars.items():
+        flag = name in ("failed", "capacity_exceeded") or name.startswith("record_")
+        if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
+            continue
+        values = var.where(ok)
+        logs = np.log(values.where(values > 0))
+        lognormal = np.exp(logs.mean("record") + logs.std("record", ddof=1))
+        lognormal = lognormal.where((values > 0).sum("record") == ok.sum("record"))
+        stack = [values.mean("record"), values.median("record"), lognormal, values.max("record")]
+        out[f"{name}_suite"] = xr.concat(stack, dim="statistic").assign_attrs(
+            units=var.attrs.get("units", "1"), long_name=f"{var.attrs.get('long_name', name)}: suite statistic")
+    out["records_capacity_exceeded"] = ds["capacity_exceeded"].astype(bool).sum("record").astype(np.int32).assign_attrs(
+        units="1", long_name="number of records whose pad reaches a retaining ring")
+    out["records_failed"] = failed.sum("record").astype(np.int32).assign_attrs(
+        units="1", long_name="number of records whose run fails (left out of the suite statistics)")
+    out["records_counted"] = ok.sum("record").astype(np.int32).assign_attrs(
+        units="1", long_name="number of records the suite statistics are over")
+    n = ds.sizes["record"]
+    for what in ("capacity_exceeded", "failed"):
+        out[f"records_{what}_fraction"] = (out[f"records_{what}"] / n).assign_attrs(
+            units="1", long_name=f"{out[f'records_{what}'].attrs['long_name'].split(' (')[0]}, over all {n} records"
+            .replace("number of", "fraction of"))
+    result = xr.Dataset(out).assign_coords(statistic=xr.Variable(("statistic",), np.array(STATISTICS, dtype=object),
+                                                                 {"long_name": "suite statistic over the records"}))
+    return result

@@ -28,19 +28,41 @@ class Grid:
         self.axes = study.axes
         self.shape = tuple(len(v) for v in self.axes.values())
         self.n_cases = int(np.prod(self.shape))
-        self.n_chunks = -(-self.n_cases // study.chunk_size)
+        # a record axis comes first: each record's cases are a block, chunked on its own
+        self.records = list(self.axes["record"]) if "record" in self.axes else [None]
+        self.per_record = self.n_cases // len(self.records)
+        self._chunks = [part for r in range(len(self.records)) for part in self._split(r)]
+        self.n_chunks = len(self._chunks)
 
-    def chunk(self, k) -> np.ndarray:
-        """The case indices of chunk k: consecutive in the sweep order, except that with a ``dt``
-        axis the cases are taken by step size first (a chunk then holds few step sizes, each
-        solved as one batch)."""
-        if not 0 <= k < self.n_chunks:
-            raise ValueError(f"chunk {k} outside 0..{self.n_chunks - 1}")
-        cases = np.arange(self.n_cases)
+    def _split(self, r) -> list:
+        """The chunks of record r's block of cases (of all cases without a record axis): consecutive in
+        the sweep order, except that with a ``dt`` axis the cases are taken by step size first (a
+        chunk then holds few step sizes, each solved as one batch)."""
+        cases = r * self.per_record + np.arange(self.per_record)
         if "dt" in self.axes:
             cases = cases[np.argsort(self.dt_of(cases), kind="stable")]
         size = self.study.chunk_size
-        return cases[k * size:(k + 1) * size]
+        return [cases[k:k + size] for k in range(0, len(cases), size)]
+
+    def chunk(self, k) -> np.ndarray:
+        """The case indices of chunk k (a chunk holds one record's cases only)."""
+        if not 0 <= k < self.n_chunks:
+            raise ValueError(f"chunk {k} outside 0..{self.n_chunks - 1}")
+        return self._chunks[k]
+
+    def record_of(self, cases) -> str | None:
+        """The record (its name) of cases that share one, None without a record axis."""
+        if "record" not in self.axes:
+            return None
+        names = set(self.values(cases)["record"])
+        if len(names) != 1:
+            raise ValueError(f"cases of several records at once: {sorted(names)}")
+        return str(names.pop())
+
+    def excitation(self, cases):
+        """The excitation of cases that share one: the record's (processed once), or the study's."""
+        name = self.record_of(cases)
+        return self.study.excitation if name is None else self.study.records[name]
 
     def values(self, cases) -> dict:
         """{axis: its value for each case}."""
@@ -49,7 +71,7 @@ class Grid:
 
     def point(self, case) -> dict:
         """{axis: value} of one case (str for prototype names, float otherwise)."""
-        return {k: (str(v[0]) if k in ("prototype", "component") else float(v[0]))
+        return {k: (str(v[0]) if k in ("record", "prototype", "component") else float(v[0]))
                 for k, v in self.values(np.array([case])).items()}
 
     def geometry(self, cases) -> Geometry:
@@ -75,7 +97,7 @@ class Grid:
     def azimuth_of(self, cases) -> np.ndarray:
         """The reference azimuth of each case of a bidirectional study (rad): the direction its
         spatial model gives a zero ground increment (``excitation.azimuth`` of that case)."""
-        excitation, values = self.study.excitation, self.values(cases)
+        excitation, values = self.excitation(cases), self.values(cases)
         if "azimuth" in values:
             return np.radians(values["azimuth"])
         base = np.full(len(cases), float(getattr(excitation, "azimuth", 0.0)))  # planar: unused
@@ -97,9 +119,9 @@ class Grid:
         L, R1, R3 = (np.broadcast_to(getattr(devices, k), (len(cases),)) for k in ("L", "R1", "R3"))
         return [SimpleNamespace(L=float(L[i]), R1=float(R1[i]), R3=float(R3[i])) for i in range(len(cases))]
 
-    def times(self, dt) -> np.ndarray:
-        """The step times at step size dt (s)."""
-        return step_times(self.study.excitation, dt)
+    def times(self, dt, cases=None) -> np.ndarray:
+        """The step times at step size dt (s) of the cases' excitation (the study's without ``cases``)."""
+        return step_times(self.study.excitation if cases is None else self.excitation(cases), dt)
 
     def imposed(self, cases, t) -> tuple[np.ndarray, dict]:
         """The motion imposed on RB1 relative to RB3 at the step times t, (T, n) or (T, n, 2), and the
@@ -109,7 +131,7 @@ class Grid:
         of its device's L."""
         if self.study.structure is None:
             return self.ground_motion(cases, t), {}
-        excitation, values = self.study.excitation, self.values(cases)
+        excitation, values = self.excitation(cases), self.values(cases)
         out = np.zeros((len(t), len(cases), excitation.components))
         summaries = {name: np.zeros(len(cases)) for name in structure.SUMMARIES}
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
@@ -129,7 +151,7 @@ class Grid:
         """X_g (T, n) of the cases at the step times t, or (T, n, 2) for a bidirectional excitation:
         the excitation evaluates its own swept parameters for the batch; ``scale`` multiplies the
         result, ``component`` keeps x, y or both."""
-        excitation, values = self.study.excitation, self.values(cases)
+        excitation, values = self.excitation(cases), self.values(cases)
         own = {k: values[k] for k in excitation.parameters if k in values}
         Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
         scale = values.get("scale", np.ones(len(cases)))

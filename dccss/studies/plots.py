@@ -54,6 +54,9 @@ SUMMARY_VARIABLES = [
     ("shear_ratio_max_abs", "max |F/W| of the device", 1.0, "-"),
 ]
 STROKE_COLOUR = "tab:purple"
+#: how the suite statistics over the records are drawn, and their legend
+SUITE_LINES = {"mean": dict(lw=3.4, alpha=0.4, zorder=1), "p84_lognormal": dict(lw=1.6, ls=(0, (1, 1.2)), zorder=1)}
+SUITE_LABELS = {"mean": "mean over the records", "p84_lognormal": "84th percentile over the records (lognormal)"}
 #: (history variable, label, factor to plot units, plot unit)
 HISTORY_ROWS = [
     ("Xg", "ground displacement $X_g$", 100.0, "cm"),
@@ -61,9 +64,9 @@ HISTORY_ROWS = [
     ("rise", "rise of RB3", 100.0, "cm"),
     ("interpenetration", "max $|I|$ of the corners", 1e3, "mm"),
 ]
-AXIS_SYMBOLS = {"amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$", "theta2_0": "$θ^2(t_0)$",
-                "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$", "component": "component of $X_g$",
-                "friction": "friction μ", "damping": "damping ζ"}
+AXIS_SYMBOLS = {"record": "record", "amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$",
+                "theta2_0": "$θ^2(t_0)$", "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$",
+                "component": "component of $X_g$", "friction": "friction μ", "damping": "damping ζ"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
@@ -599,6 +602,10 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
                 capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
                 _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
                 slot += 1
+            if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
+                suite = ds[f"{name}_suite"].sel(model=model)
+                for statistic, look in SUITE_LINES.items():
+                    ax.plot(x, factor * suite.sel(statistic=statistic).values, color=style["color"], **look)
         _line_marks(ax, ds, x_name, marks)
         _scale(ax, "x", x_name, x)
         ax.set_xlabel(_axis_label(ds, x_name))
@@ -607,7 +614,14 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
     if len(drawn) > 1:
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
+    if "statistic" in ds.coords:
+        legend.append(_suite_handles())
     return legend + [_flag_handles(ds, models, drawn)]
+
+
+def _suite_handles():
+    return [Line2D([], [], color="0.3", **look, label=SUITE_LABELS[statistic])
+            for statistic, look in SUITE_LINES.items()]
 
 
 def _draw_categories(axs, ds, drawn, marks, variables, models):
@@ -623,13 +637,19 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
             ax.plot(x, values, ls="none", color=style["color"], zorder=style["zorder"], **_marker(model))
             capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
             _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
+            if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
+                for statistic, look in SUITE_LINES.items():
+                    ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)),
+                               color=style["color"], **look)
         _line_marks(ax, ds, name_axis, marks)
-        ax.set_xticks(x, names)
+        ax.set_xticks(x, names, rotation=30 if name_axis == "record" else 0, ha="right" if name_axis == "record"
+                      else "center")
         ax.set_xlim(-0.6, len(names) - 0.4)
         ax.set_xlabel(_axis_label(ds, name_axis))
         _summary_axes(ax, ds, name, label, unit, models)
     return [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
-             for m in models], _flag_handles(ds, models, drawn)]
+             for m in models]] + ([_suite_handles()] if "statistic" in ds.coords else []) + \
+        [_flag_handles(ds, models, drawn)]
 
 
 def _scale(ax, which, name, values):

@@ -27,7 +27,8 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
     out = {}
     for dt in np.unique(dts):
         mine = dts == dt
-        group, times = cases[mine], grid.times(dt)
+        group = cases[mine]
+        times = grid.times(dt, group)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
         ground, own = grid.imposed(group, times)
         try:
@@ -46,8 +47,13 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         data[flag].data = data[flag].data.astype(np.int8)
     for name, v in grid.values(cases).items():
         data[name] = axis_variable(("case",), name, v)
-    ds = xr.Dataset(data, coords={"case": variable(("case",), cases, "1", "flattened sweep index")})
-    ds.attrs = study_attrs(study, model)
+    record = grid.record_of(cases)
+    if record is None:
+        ds = xr.Dataset(data, coords={"case": variable(("case",), cases, "1", "flattened sweep index")})
+    else:  # the index within the record's cases: a chunk does not depend on the other records
+        ds = xr.Dataset(data, coords={"case": variable(("case",), cases % grid.per_record, "1",
+                                                       "flattened sweep index within the record")})
+    ds.attrs = study_attrs(study, model, record)
     return ds
 
 
@@ -61,6 +67,8 @@ def history_mapping(study, i, model) -> dict:
     if study.symmetric:
         full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
     excitation = dict(study.excitation_spec)
+    if "record" in point:
+        excitation["file"] = study.record_entries[point["record"]]
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -28,16 +30,17 @@ from .grid import PLATE3_FOLLOWS, Grid
 EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "component")
 #: the isolated structure's parameters (``structure``; sweeping one gives a study a structure)
 STRUCTURE_AXES = ("friction", "damping")
-AXES = ("prototype",) + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
+AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
 #: sweep axes whose values are names, not numbers
-CATEGORICAL = ("prototype", "component")
+CATEGORICAL = ("record", "prototype", "component")
 #: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
 #: checks a study against as well
 KEYS = set(schema("study")["properties"])
 REQUIRED = tuple(schema("study")["required"])
 #: the keys that only the plots and the histories read: the sweep's results do not depend on them
 NOT_SWEPT = ("marks", "histories", "animate")
-#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log)
+#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log); with a
+#: record axis, "auto" is a chunk per record
 AUTO_CHUNKS = 4
 
 
@@ -69,14 +72,52 @@ def axis_values(spec, key) -> np.ndarray:
     return np.array([number(v, f"{key}[{i}]") for i, v in enumerate(spec)])
 
 
-def sweep_spec(config: dict, models=None) -> dict:
+def sweep_spec(config: dict, models=None, record=None) -> dict:
     """The part of a study file that the sweep's results depend on: all but the description, the
-    marks and the histories (and, with ``models``, only those models)."""
+    marks and the histories (and, with ``models``, only those models; with ``record``, one entry of
+    the ``record`` axis (``Study.record_entries``), only that record: what its jobs depend on)."""
     spec = {k: v for k, v in config.items() if k not in NOT_SWEPT}
     spec["study"] = {"name": config["study"]["name"]}
     if models is not None:
         spec["models"] = list(models)
+    if record is not None:
+        spec["sweep"] = {**config["sweep"], "record": [record]}
     return spec
+
+
+def record_entries(spec, base: Path) -> dict:
+    """{name: entry} of a ``record`` sweep axis: a list of files, pairs [x, y] of files, or glob patterns
+    (relative to ``base``; a pattern gives its matches in sorted order). A file is named by its stem, a
+    pair by its station: the stems' common start (without trailing separators), else 'x+y'."""
+    if not isinstance(spec, list) or not spec:
+        raise StudyError(f"sweep.record: expected a non-empty list of files, pairs [x, y] or patterns, got {spec!r}")
+    out = {}
+    for i, entry in enumerate(spec):
+        key = f"sweep.record[{i}]"
+        if isinstance(entry, list):
+            if len(entry) != 2 or not all(isinstance(f, str) for f in entry):
+                raise StudyError(f"{key}: a pair is a list of two files [x, y], got {entry!r}")
+            stems = [Path(f).stem for f in entry]
+            common = os.path.commonprefix(stems).rstrip("_-. ")
+            items = [(common if common and common not in stems else "+".join(stems), entry)]
+        elif isinstance(entry, str):
+            if any(c in entry for c in "*?["):
+                matches = sorted(str(p.relative_to(base)) for p in base.glob(entry) if p.is_file())
+                if not matches:
+                    raise StudyError(f"{key}: the pattern {entry!r} matches no file under {str(base)!r}")
+                items = [(Path(m).stem, m) for m in matches]
+            else:
+                items = [(Path(entry).stem, entry)]
+        else:
+            raise StudyError(f"{key}: expected a file, a pair [x, y] or a pattern, got {type(entry).__name__} "
+                             f"{entry!r}")
+        for name, value in items:
+            name = re.sub(r"[^A-Za-z0-9_.+-]", "_", name)
+            if name in out:
+                raise StudyError(f"{key}: two records are named {name!r} ({out[name]!r} and {value!r}); records are "
+                                 f"named by their file stems (a pair by its station): rename one")
+            out[name] = value
+    return out
 
 
 @dataclass
@@ -103,6 +144,8 @@ class Study:
     histories: list = field(default_factory=list)
     animate: list = field(default_factory=list)  # indices of the histories to animate
     structure: Structure | None = None  # the base structure (None: the ground displacement is imposed)
+    records: dict = field(default_factory=dict)  # a record axis: name -> its excitation (processed once)
+    record_entries: dict = field(default_factory=dict)  # name -> its file or pair [x, y], as in the study file
 
     @cached_property
     def grid(self) -> Grid:
@@ -129,8 +172,23 @@ class Study:
         for i, m in enumerate(models):
             choice(m, f"models[{i}]", MODELS)
         axes = _axes(config["sweep"], known, symmetric)
-        excitation = _swept_excitation(excitation_from(config["excitation"], base, geometry), axes,
-                                       config["excitation"])
+        records = {}
+        if "record" in config["sweep"]:
+            if "file" in config["excitation"]:
+                raise StudyError("excitation.file: the records are the sweep's (sweep.record); give the excitation's "
+                                 "kind and processing (scale, window, baseline, units) without a file")
+            entries = record_entries(config["sweep"]["record"], base)
+            axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
+            records = {name: _swept_excitation(excitation_from({**config["excitation"], "file": entry}, base, geometry,
+                                                               f"sweep.record[{name}]"), axes, config["excitation"])
+                       for name, entry in entries.items()}
+            kinds = {e.components for e in records.values()}
+            if len(kinds) > 1:
+                raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
+            excitation = next(iter(records.values()))
+        else:
+            excitation = _swept_excitation(excitation_from(config["excitation"], base, geometry), axes,
+                                           config["excitation"])
         if excitation.components == 2 and config.get("normals", "signed") != "signed":
             raise StudyError("normals: bidirectional ground motion runs the spatial models, which use signed normals "
                              f"only; got {config.get('normals')!r}")
@@ -146,7 +204,8 @@ class Study:
                     chunk_size=_chunk_size(config.get("chunk_size", "auto"), axes),
                     capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES),
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
-                    base=base, structure=structure)
+                    base=base, structure=structure, records=records,
+                    record_entries=record_entries(config["sweep"]["record"], base) if records else {})
         study.marks = _marks(config.get("marks", {}), axes)
         _check_grid(study.grid)
         _check_frictions(study.grid)
@@ -189,6 +248,8 @@ def _axes(sweep, known, symmetric) -> dict:
         if symmetric and key in PLATE3_FOLLOWS:
             raise StudyError(f"sweep.{key}: with symmetric: true, {key} follows {PLATE3_FOLLOWS[key]}; "
                              f"sweep {PLATE3_FOLLOWS[key]} instead")
+        if key == "record":
+            continue  # read with the excitation (``record_entries``)
         if key == "component":
             if not isinstance(spec, list) or not spec:
                 raise StudyError(f"sweep.component: expected a non-empty list of {list(COMPONENTS)}, got {spec!r}")
@@ -277,8 +338,9 @@ def _check_frictions(grid):
 
 
 def _chunk_size(chunk, axes) -> int:
-    if chunk == "auto":
-        return -(-int(np.prod([len(v) for v in axes.values()])) // AUTO_CHUNKS)
+    if chunk == "auto":  # with a record axis, a chunk per record (its jobs then depend on it alone)
+        others = int(np.prod([len(v) for k, v in axes.items() if k != "record"]))
+        return others if "record" in axes else -(-others // AUTO_CHUNKS)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise StudyError(f"chunk_size: expected an integer >= 1 or 'auto', got {chunk!r}")
     return chunk

@@ -1,18 +1,18 @@
 wildcard_constraints:
     study=STUDY.name,
     model="compliant|stick_slip",
-    chunk="[0-9]+",
+    chunk="[0-9]+|[A-Za-z0-9_.+-]+[.][0-9]+",
     i="[0-9]+",
 
 
 rule study_chunk:
     input:
-        study_files(),
+        lambda w: study_files(chunk_record(w.chunk)),
     output:
         "results/studies/{study}/chunks/{model}_{chunk}.nc",
     params:
         study_dir=str(STUDY_FILE.parent),
-        spec=lambda w: sweep_spec(config, [w.model]),
+        spec=chunk_spec,
         library=COMPUTE_SOURCE,
     log:
         "logs/studies/{study}/{model}_{chunk}.log",
@@ -41,7 +41,7 @@ rule study_combine:
 
 rule study_history:
     input:
-        study_files(),
+        lambda w: study_files(STUDY.histories[int(w.i)].get("record")),
     output:
         "results/studies/{study}/histories/{model}_{i}.nc",
     params:

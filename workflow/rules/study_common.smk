@@ -16,15 +16,44 @@ except CaseError as err:
     raise WorkflowError(f"study file {STUDY_FILE}: {err}") from None
 
 
-def study_files():
-    """Files the study reads (a recorded or tabulated ground motion): inputs of its jobs."""
-    files = STUDY.excitation_spec.get("file", [])
+def _paths(files):
     return [str(STUDY_FILE.parent / f) for f in ([files] if isinstance(files, str) else files)]
+
+
+def study_files(record=None):
+    """Files the study reads (a recorded or tabulated ground motion; with a record axis, those of
+    ``record``, or of every record): inputs of its jobs."""
+    if STUDY.records:
+        names = [record] if record else list(STUDY.record_entries)
+        return [p for name in names for p in _paths(STUDY.record_entries[name])]
+    return _paths(STUDY.excitation_spec.get("file", []))
+
+
+def chunk_label(k):
+    """A chunk's name in its file: its number, or with a record axis '<record>.<number within it>'
+    (a record's jobs then do not change when other records are added or dropped)."""
+    cases = STUDY.grid.chunk(k)
+    record = STUDY.grid.record_of(cases)
+    if record is None:
+        return str(k)
+    first = next(j for j in range(STUDY.grid.n_chunks) if STUDY.grid.record_of(STUDY.grid.chunk(j)) == record)
+    return f"{record}.{k - first}"
+
+
+def chunk_record(label):
+    """The record of a chunk label (None without a record axis)."""
+    return label.rsplit(".", 1)[0] if "." in label else None
+
+
+def chunk_spec(wildcards):
+    """What a chunk's summaries depend on: its model's part of the study file, and only its record's."""
+    record = chunk_record(wildcards.chunk)
+    return sweep_spec(config, [wildcards.model], None if record is None else STUDY.record_entries[record])
 
 
 def chunk_files():
     return [
-        f"results/studies/{STUDY.name}/chunks/{model}_{k}.nc"
+        f"results/studies/{STUDY.name}/chunks/{model}_{chunk_label(k)}.nc"
         for model in STUDY.models
         for k in range(STUDY.grid.n_chunks)
     ]

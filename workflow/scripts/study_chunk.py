@@ -10,9 +10,10 @@ from dccss.studies import Study, run_chunk
 
 with logged(snakemake.log[0]) as log:
     study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
-    model, k = snakemake.wildcards.model, int(snakemake.wildcards.chunk)
+    model, label = snakemake.wildcards.model, snakemake.wildcards.chunk
+    k = int(label.rsplit(".", 1)[-1])  # '<record>.<k>': the spec holds that record alone
     cases = study.grid.chunk(k)
-    print(f"{model}, chunk {k}: {len(cases)} cases")
+    print(f"{model}, chunk {label}: {len(cases)} cases")
     start, shown = time.monotonic(), [0.0]
 
     def progress(n, total, size, dt):

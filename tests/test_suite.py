@@ -1,0 +1,146 @@
+"""Record suites: a `record` sweep axis, the suite statistics, and jobs per record in the workflow."""
+
+import re
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+from conftest import ROOT, copy_project, snakemake
+
+from dccss.records import read_at2, write_at2
+from dccss.studies import Study, StudyError, combine, history_case, run_chunk
+
+NAMES = ("RSN11_NORTH", "RSN12_SOUTH", "RSN13_EAST")
+
+
+@pytest.fixture
+def suite(tmp_path):
+    """Three short PEER-format records (shapes of the synthetic pair, of different lengths) in tmp_path/records."""
+    folder = tmp_path / "records"
+    folder.mkdir()
+    dt, a = read_at2(ROOT / "config/studies/records/synthetic.AT2")
+    _, b = read_at2(ROOT / "config/studies/records/synthetic_y.AT2")
+    for name, acc in zip(NAMES, (a[:900], b[:1000], 0.7 * a[::-1][:800])):
+        write_at2(folder / f"{name}.AT2", dt, acc)
+    return tmp_path
+
+
+CONFIG = {"study": {"name": "suite"}, "prototype": "DFP1", "excitation": {"kind": "record", "baseline": "linear"},
+          "dt": 0.01, "models": ["compliant", "stick_slip"],
+          "sweep": {"record": ["records/*.AT2"], "scale": [1.0, 2.5]},
+          "histories": [{"record": "RSN12_SOUTH", "scale": 2.5}]}
+
+
+def _combined(study):
+    return combine(study, {m: [run_chunk(study, m, k) for k in range(study.grid.n_chunks)] for m in study.models})
+
+
+def test_a_record_axis_names_each_record_and_processes_it_once(suite):
+    study = Study.from_config(CONFIG, suite)
+    assert list(study.axes) == ["record", "scale"] and list(study.axes["record"]) == list(NAMES)
+    assert study.grid.n_chunks == 3 and all(study.grid.record_of(study.grid.chunk(k)) == NAMES[k] for k in range(3))
+    ds = _combined(study)
+    assert list(ds["record"].values) == list(NAMES) and ds.sizes["statistic"] == 4
+    # each record's cases are those of a study of that record alone
+    for name in NAMES:
+        alone = Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "file": f"records/{name}.AT2"},
+                                   "sweep": {"scale": [1.0, 2.5]}, "histories": [], "chunk_size": 2}, suite)
+        one = _combined(alone)
+        for var in ("theta2_max_abs", "rise_max", "clearance_min"):
+            assert np.array_equal(ds[var].sel(record=name).values, one[var].values, equal_nan=True), (name, var)
+    assert ds["record_pga"].attrs["units"] == "m s-2" and ds["record_pgd"].sel(record="RSN12_SOUTH") > 0
+    case = history_case(study, 0, "stick_slip")
+    assert case.excitation.source.endswith("RSN12_SOUTH.AT2") and case.excitation.scale == 2.5
+
+
+def test_the_suite_statistics_equal_numpys_on_the_records_values(suite):
+    study = Study.from_config({**CONFIG, "structure": {"friction": 0.04}}, suite)
+    ds = _combined(study)
+    for name in ("theta2_max_abs", "rise_max", "stroke_max_abs", "shear_ratio_max_abs"):
+        for model in study.models:
+            for scale in (1.0, 2.5):
+                values = ds[name].sel(model=model, scale=scale).values
+                stats = ds[f"{name}_suite"].sel(model=model, scale=scale)
+                assert float(stats.sel(statistic="mean")) == pytest.approx(np.mean(values), rel=1e-14)
+                assert float(stats.sel(statistic="median")) == pytest.approx(np.median(values), rel=1e-14)
+                assert float(stats.sel(statistic="max")) == np.max(values)
+                logs = np.log(values)
+                assert float(stats.sel(statistic="p84_lognormal")) == pytest.approx(
+                    np.exp(logs.mean() + logs.std(ddof=1)), rel=1e-13)
+    counted = ds["records_capacity_exceeded"].sel(model="compliant", scale=2.5)
+    assert int(counted) == int(ds["capacity_exceeded"].sel(model="compliant", scale=2.5).sum())
+    assert float(ds["records_capacity_exceeded_fraction"].sel(model="compliant", scale=2.5)) == int(counted) / 3
+    # a signed summary has no lognormal percentile
+    assert np.isnan(ds["stroke_end_suite"].sel(statistic="p84_lognormal")).all()
+
+
+def test_failed_records_are_counted_and_left_out_of_the_statistics(suite):
+    study = Study.from_config({**CONFIG, "sweep": {"record": ["records/*.AT2"], "scale": [1.0, 9.0]}}, suite)
+    ds = _combined(study)
+    failed = ds["failed"].sel(model="stick_slip", scale=9.0).values.astype(bool)
+    assert failed.any()
+    kept = ds["theta2_max_abs"].sel(model="stick_slip", scale=9.0).values[~failed]
+    stats = ds["theta2_max_abs_suite"].sel(model="stick_slip", scale=9.0)
+    assert int(ds["records_failed"].sel(model="stick_slip", scale=9.0)) == failed.sum()
+    assert int(ds["records_counted"].sel(model="stick_slip", scale=9.0)) == (~failed).sum()
+    if kept.size:
+        assert float(stats.sel(statistic="mean")) == pytest.approx(kept.mean(), rel=1e-14)
+
+
+@pytest.mark.parametrize("sweep, message", [
+    ({"record": []}, r"sweep\.record: expected a non-empty list"),
+    ({"record": ["records/*.DT2"]}, r"sweep\.record\[0\]: the pattern 'records/\*\.DT2' matches no file"),
+    ({"record": ["records/RSN11_NORTH.AT2", "records/*.AT2"]}, r"two records are named 'RSN11_NORTH'"),
+    ({"record": [["records/RSN11_NORTH.AT2"]]}, r"sweep\.record\[0\]: a pair is a list of two files"),
+    ({"record": [3]}, r"sweep\.record\[0\]: expected a file, a pair \[x, y\] or a pattern"),
+])
+def test_bad_record_axes_are_refused(suite, sweep, message):
+    with pytest.raises(StudyError, match=message):
+        Study.from_config({**CONFIG, "sweep": sweep, "histories": []}, suite)
+    with pytest.raises(StudyError, match="excitation.file: the records are the sweep's"):
+        Study.from_config({**CONFIG, "excitation": {"kind": "record", "file": "records/RSN11_NORTH.AT2"}}, suite)
+
+
+def test_a_pair_is_named_by_its_station(suite):
+    from dccss.studies.spec import record_entries
+
+    pairs = record_entries([["RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270.AT2"], ["a_x.AT2", "b_y.AT2"]],
+                           suite)
+    assert list(pairs) == ["RSN6_IMPVALL.I_I-ELC", "a_x+b_y"]
+
+
+@pytest.mark.slow
+def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
+    (suite / "work").mkdir()
+    work = copy_project(suite / "work")
+    (work / "config/studies/records_suite").mkdir(parents=True)
+    for name in NAMES:
+        source = suite / "records" / f"{name}.AT2"
+        (work / "config/studies/records_suite" / f"{name}.AT2").write_bytes(source.read_bytes())
+    study_file = work / "config/studies/suite.yaml"
+    config = {**CONFIG, "sweep": {"record": ["records_suite/RSN11_NORTH.AT2", "records_suite/RSN12_SOUTH.AT2"],
+                                  "scale": [1.0, 2.5]}, "histories": [{"record": "RSN12_SOUTH", "scale": 2.5}]}
+    study_file.write_text(yaml.safe_dump(config))
+    run = snakemake(work, "--configfile", "config/studies/suite.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    ds = xr.open_dataset(work / "results/studies/suite/suite.nc")
+    assert list(ds["record"].values) == ["RSN11_NORTH", "RSN12_SOUTH"]
+    chunks = sorted(p.name for p in (work / "results/studies/suite/chunks").iterdir())
+    assert chunks == [f"{m}_{r}.0.nc" for m in ("compliant", "stick_slip") for r in ("RSN11_NORTH", "RSN12_SOUTH")]
+    assert (work / "figures/studies/suite/maps.png").is_file()
+    # adding a record runs its jobs and the combination, not the other records' chunks again
+    config["sweep"]["record"].append("records_suite/RSN13_EAST.AT2")
+    study_file.write_text(yaml.safe_dump(config))
+    dry = snakemake(work, "--configfile", "config/studies/suite.yaml", "--dry-run", "--quiet", "rules")
+    assert dry.returncode == 0, dry.stderr[-2000:]
+    plan = dry.stdout + dry.stderr
+    assert "study_chunk" in plan
+    run = snakemake(work, "--configfile", "config/studies/suite.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    rerun = re.findall(r"^\s*output: results/studies/suite/chunks/(\S+)\.nc$", run.stdout + run.stderr, re.MULTILINE)
+    assert sorted(rerun) == ["compliant_RSN13_EAST.0", "stick_slip_RSN13_EAST.0"], rerun
+    ds = xr.open_dataset(work / "results/studies/suite/suite.nc")
+    assert list(ds["record"].values) == ["RSN11_NORTH", "RSN12_SOUTH", "RSN13_EAST"]
+    assert np.allclose(ds["theta2_max_abs_suite"].sel(statistic="mean").values,
+                       ds["theta2_max_abs"].mean("record").values, rtol=1e-14)
