@@ -166,7 +166,9 @@ def record_from(value, base: Path, key="excitation"):
     elif not isinstance(file, str):
         raise CaseError(f"{key}.file: expected a path string or a list of two [x, y], got "
                         f"{type(file).__name__} {file!r}")
-    scale = number(value.get("scale", 1.0), f"{key}.scale")
+    scale = value.get("scale", 1.0)
+    spectral = scale if isinstance(scale, dict) else None
+    scale = 1.0 if spectral is not None else number(scale, f"{key}.scale")
     window = value.get("window")
     if window is not None:
         if not isinstance(window, list) or len(window) != 2:
@@ -183,13 +185,46 @@ def record_from(value, base: Path, key="excitation"):
             units_from(units)
         except ValueError as err:
             raise CaseError(f"{key}.units: {err}") from None
-    try:
-        if isinstance(file, list):
-            return RecordPair.from_files([base / f for f in file], scale=scale, window=window, baseline=baseline,
-                                         units=units)
-        return Record.from_file(base / file, scale=scale, window=window, baseline=baseline, units=units)
-    except ValueError as err:
-        raise CaseError(f"{key}.file: {err}") from None
+    def read(factor):
+        try:
+            if isinstance(file, list):
+                return RecordPair.from_files([base / f for f in file], scale=factor, window=window,
+                                             baseline=baseline, units=units)
+            return Record.from_file(base / file, scale=factor, window=window, baseline=baseline, units=units)
+        except ValueError as err:
+            raise CaseError(f"{key}.file: {err}") from None
+
+    record = read(scale)
+    if spectral is None:
+        return record
+    return _scaled_to_spectrum(record, read, spectral, isinstance(file, list), f"{key}.scale")
+
+
+def _scaled_to_spectrum(record, read, spec, pair, key):
+    """The record read again at the scale that makes its spectral acceleration the target's."""
+    from .records import G
+    from .spectra import PAIR_DEFINITIONS, spectral_acceleration
+
+    check_keys(spec, key, ("to", "period", "target"), ("damping", "definition"))
+    choice(spec["to"], f"{key}.to", ("spectral_acceleration",))
+    period = number(spec["period"], f"{key}.period", positive=True)
+    target = number(spec["target"], f"{key}.target", positive=True)
+    damping = number(spec.get("damping", 0.05), f"{key}.damping")
+    if not 0 <= damping < 1:
+        raise CaseError(f"{key}.damping: {damping!r} is outside 0 <= damping < 1")
+    definition = choice(spec.get("definition", "rotd50"), f"{key}.definition", PAIR_DEFINITIONS)
+    if not pair and "definition" in spec:
+        raise CaseError(f"{key}.definition: says how a pair's spectral acceleration is taken; this record has one "
+                        f"component")
+    unscaled = spectral_acceleration(record, period, damping, definition)
+    if not unscaled > 0:
+        raise CaseError(f"{key}: the record's spectral acceleration at T = {period:g} s is {unscaled!r}: it cannot "
+                        f"be scaled to a target")
+    scaled = read(target * G / unscaled)
+    scaled.scaling = {"record_scaled_to_sa_g": target, "record_scaling_period_s": period,
+                      "record_scaling_damping": damping, "record_sa_unscaled_g": unscaled / G,
+                      **({"record_scaling_definition": definition} if pair else {})}
+    return scaled
 
 
 @dataclass

@@ -37,7 +37,9 @@ def _record(a) -> str:
         return ""
     peaks = "; ".join(f"{label}PGA = {a[p + 'pga_m_per_s2'] / G:.3g} g, PGV = {100 * a[p + 'pgv_m_per_s']:.3g} cm/s, "
                       f"PGD = {100 * a[p + 'pgd_m']:.3g} cm" for label, p in parts)
-    return f"; record {peaks} (scale {a[parts[0][1] + 'scale']:g})"
+    scaled = (f": Sa(T = {a['record_scaling_period_s']:g} s, {100 * a['record_scaling_damping']:g} %) = "
+              f"{a['record_scaled_to_sa_g']:g} g" if "record_scaled_to_sa_g" in a else "")
+    return f"; record {peaks} (scale {a[parts[0][1] + 'scale']:g}{scaled})"
 
 
 def _structure(ds) -> str:

@@ -808,7 +808,7 @@ class Record:
                  "record_pga_m_per_s2": self.pga, "record_pgv_m_per_s": self.pgv, "record_pgd_m": self.pgd}
         if self.warning:
             attrs["record_warning"] = self.warning
-        return attrs
+        return {**attrs, **getattr(self, "scaling", {})}
 
     def __repr__(self):
         return (f"Record({Path(self.source).name!r}, {self.quantity} in {self.units}, {self.npts} samples, "
@@ -937,7 +937,7 @@ class RecordPair:
         for name, record in (("x", self.x), ("y", self.y)):
             attrs.update({f"record_{name}_{k.removeprefix('record_')}": v for k, v in record.attrs().items()
                           if k != "excitation"})
-        return attrs
+        return {**attrs, **getattr(self, "scaling", {})}
 
     def __repr__(self):
         return f"RecordPair(x={self.x!r}, y={self.y!r})"

@@ -144,3 +144,20 @@ def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
     assert list(ds["record"].values) == ["RSN11_NORTH", "RSN12_SOUTH", "RSN13_EAST"]
     assert np.allclose(ds["theta2_max_abs_suite"].sel(statistic="mean").values,
                        ds["theta2_max_abs"].mean("record").values, rtol=1e-14)
+
+
+def test_a_suite_scaled_to_a_spectrum_has_the_target_at_its_period(suite):
+    from dccss import spectra
+    from dccss.records import G
+
+    target = {"to": "spectral_acceleration", "period": 2.0, "damping": 0.05, "target": 0.25}
+    study = Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": target},
+                               "sweep": {"record": ["records/*.AT2"], "friction": [0.03, 0.06]},
+                               "histories": []}, suite)
+    for name, excitation in study.records.items():
+        sa = spectra.spectral_acceleration(excitation, 2.0, 0.05)
+        assert abs(sa / G / 0.25 - 1) < 1e-6, name
+    ds = _combined(study)
+    assert ds["stroke_max_abs_suite"].sizes == {"statistic": 4, "model": 2, "friction": 2}
+    with pytest.raises(StudyError, match="sweep.scale: the records are scaled to a spectral acceleration"):
+        Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": target}}, suite)

@@ -172,6 +172,9 @@ class Study:
         for i, m in enumerate(models):
             choice(m, f"models[{i}]", MODELS)
         axes = _axes(config["sweep"], known, symmetric)
+        if "scale" in axes and isinstance(config["excitation"].get("scale"), dict):
+            raise StudyError("sweep.scale: the records are scaled to a spectral acceleration (excitation.scale); a "
+                             "scale axis would multiply it again: give the target you want, or one study per target")
         records = {}
         if "record" in config["sweep"]:
             if "file" in config["excitation"]:

@@ -1,0 +1,66 @@
+"""Response spectra of recorded ground motions, and scaling a record to a spectral acceleration.
+
+The pseudo-spectral acceleration of a record at period T and damping ratio ζ is PSA = ω² max |u|,
+ω = 2π / T, u the displacement of a linear oscillator ü + 2ζω u̇ + ω² u = -a_g(t) at rest at the
+record's start. It is solved exactly for the record's samples joined by straight lines (the
+Nigam-Jennings idea): by the same closed form that solves the isolated structure with no
+friction (``mechanics.structure.solve`` with μ = 0 and a pendulum of length L = g / ω²), so the
+records that drive the structure and their spectra are one reading of the samples. No library
+does this exactly for non-uniform sample times with the windowed, baseline-corrected
+acceleration dccss uses; ``pyrotd`` and ``eqsig`` (frequency-domain and Newmark-based
+respectively, uniform steps) would add a dependency for a few lines.
+
+Two components: ``rotd(... , percentile=50)`` is RotD50, the median over the horizontal
+orientations 0-179° of the peak response to the rotated component (Boore 2010; what NGA-West2
+reports); since the oscillator is linear, the response to a component rotated by θ is
+cos θ u_x + sin θ u_y, so the two responses are computed once. ``geometric_mean`` is the geometric
+mean of the two as-recorded components' PSA (older practice).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .mechanics.structure import G, Ground, solve
+
+#: the definitions of a pair's spectral acceleration that ``scale_factor`` knows
+PAIR_DEFINITIONS = ("rotd50", "geometric_mean")
+ORIENTATIONS = np.radians(np.arange(180.0))  # 1° steps, as NGA-West2
+
+
+def response(time, acceleration, period, damping=0.05) -> np.ndarray:
+    """The oscillator's displacement u (m) at the sample times: (n,) for (n,) acceleration (m/s²),
+    (n, 2) for two components."""
+    if not period > 0:
+        raise ValueError(f"period must be > 0 s, got {period!r}")
+    omega = 2 * np.pi / period
+    ground = Ground.from_samples(time, acceleration)
+    u = solve(ground, np.asarray(time, dtype=float), G / omega**2, 0.0, damping).stroke
+    return u[:, 0] if np.ndim(acceleration) == 1 else u
+
+
+def psa(time, acceleration, period, damping=0.05) -> float:
+    """Pseudo-spectral acceleration (m/s²) of one component at ``period`` (s) and ``damping``."""
+    return float((2 * np.pi / period) ** 2 * np.max(np.abs(response(time, acceleration, period, damping))))
+
+
+def rotd(time, ax, ay, period, damping=0.05, percentile=50.0) -> float:
+    """RotD<percentile> (m/s²) of a pair: the percentile over orientations 0-179° of the PSA of the
+    component rotated by each."""
+    u = response(time, np.column_stack([ax, ay]), period, damping)
+    peaks = np.max(np.abs(np.cos(ORIENTATIONS)[None, :] * u[:, :1] + np.sin(ORIENTATIONS)[None, :] * u[:, 1:]), axis=0)
+    return float((2 * np.pi / period) ** 2 * np.percentile(peaks, percentile))
+
+
+def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50") -> float:
+    """The spectral acceleration (m/s²) of a ``records.Record`` or of a ``records.RecordPair``
+    (``definition``: rotd50 or geometric_mean)."""
+    if excitation.components == 1:
+        return psa(excitation.time, excitation.acceleration, period, damping)
+    x, y = excitation.x, excitation.y
+    if definition == "rotd50":
+        return rotd(excitation.time, x.acceleration, y.acceleration, period, damping)
+    if definition == "geometric_mean":
+        return float(np.sqrt(psa(x.time, x.acceleration, period, damping) * psa(y.time, y.acceleration, period,
+                                                                               damping)))
+    raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
