@@ -22,6 +22,8 @@ Format (lengths in m, angles in degrees, times in s)::
                 #     units: ..}  a record pair (dccss.records.RecordPair): both files processed as
                 #     one record, each with its own units header; their sample times after the
                 #     window must be equal (same dt and npts; never resampled)
+                # a record pair is placed x east, y north by its PEER files' component azimuths
+                #   (line 2), whatever their order (else in file order), and `rotation: 30.0` turns it
                 # a two-component table or record pair takes no `azimuth`, but may take
                 #   `component: x` (or y: the other held at zero) or `both` (the default), to run
                 #   the same input unidirectionally and bidirectionally
@@ -177,6 +179,10 @@ def record_from(value, base: Path, key="excitation"):
     baseline = value.get("baseline")
     if baseline is not None:
         baseline = choice(baseline, f"{key}.baseline", BASELINES)
+    rotation = number(value.get("rotation", 0.0), f"{key}.rotation")
+    if "rotation" in value and not isinstance(file, list):
+        raise CaseError(f"{key}.rotation: turns a record pair (file: [x, y]); one component is oriented by "
+                        f"azimuth instead")
     units = value.get("units")
     if units is not None:
         if not isinstance(units, str):
@@ -189,7 +195,7 @@ def record_from(value, base: Path, key="excitation"):
         try:
             if isinstance(file, list):
                 return RecordPair.from_files([base / f for f in file], scale=factor, window=window,
-                                             baseline=baseline, units=units)
+                                             baseline=baseline, units=units, rotation=rotation)
             return Record.from_file(base / file, scale=factor, window=window, baseline=baseline, units=units)
         except ValueError as err:
             raise CaseError(f"{key}.file: {err}") from None

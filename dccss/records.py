@@ -342,6 +342,31 @@ def read_peer(path, units=None, quantity=None) -> tuple[float, np.ndarray, Units
     return dt, values, stated
 
 
+_AZIMUTH_WORDS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0}
+_VERTICAL = re.compile(r"^(UP|DWN|DOWN|V|Z|VER|VERT|[A-Z]{2}Z)\b", re.IGNORECASE)
+
+
+def peer_azimuth(path):
+    """A PEER file's component direction from its line 2 (event, station, component), whose last
+    comma-separated field names it: the azimuth in degrees clockwise from north ('180', '270',
+    '000', also 'N', 'E', 'S', 'W' and channel codes ending in them, 'HNE'); "vertical" for a vertical
+    component ('UP', 'DWN', 'V', 'Z', 'HNZ'); None where it says neither (a file of another kind)."""
+    path = Path(path)
+    if path.suffix.lower() not in PEER_QUANTITY:
+        return None
+    lines = _read_lines(path)
+    if len(lines) < 2:
+        return None
+    field = lines[1].rsplit(",", 1)[-1].strip()
+    number = re.match(r"^(\d{1,3}(?:\.\d+)?)(?:\s|$|\()", field)
+    if number and 0.0 <= float(number.group(1)) <= 360.0:
+        return float(number.group(1)) % 360.0
+    if _VERTICAL.match(field):
+        return "vertical"
+    word = re.match(r"^(?:[A-Z]{2})?([NESW])\b", field, re.IGNORECASE)
+    return _AZIMUTH_WORDS[word.group(1).upper()] if word else None
+
+
 def read_at2(path) -> tuple[float, np.ndarray]:
     """Read a PEER NGA ``.AT2`` acceleration file (see :func:`read_peer`).
 
@@ -818,8 +843,16 @@ class Record:
 
 class RecordPair:
     """Bidirectional ground motion from two records: ``x`` and ``y``, the two horizontal
-    components (along +x and +y), each a :class:`Record` processed on its own (its file's units,
-    the same ``scale``, ``window`` and ``baseline``).
+    components as given (the first and the second file), each a :class:`Record` processed on its
+    own (its file's units, the same ``scale``, ``window`` and ``baseline``).
+
+    **Orientation.** ``azimuths`` are the components' directions in degrees clockwise from north
+    (a PEER file's line 2, :func:`peer_azimuth`): given both, the pair's motion is placed in one
+    right-handed frame, **x east and y north** (z up), whatever the order of the files, by
+    x = Σ c_i sin az_i, y = Σ c_i cos az_i; the components must be horizontal and orthogonal.
+    Without them (text files, a header that names no direction) x is the first component and y the
+    second (``orientation`` says which). ``rotation`` (degrees, from x towards y) then turns the
+    motion; it is also a parameter per case (``displacement(t, rotation=...)``, a sweep axis).
 
     Both must have the same sample times after the window (equal npts, and times equal within
     1e-9 of the step): two components with different steps or lengths are refused, never
@@ -840,10 +873,10 @@ class RecordPair:
 
     kind = "record"
     components = 2
-    parameters = ()
+    parameters = ("rotation",)
     azimuth = 0.0  # rad: the reference direction (+x)
 
-    def __init__(self, x: Record, y: Record):
+    def __init__(self, x: Record, y: Record, azimuths=None, rotation=0.0):
         for name, record in (("x", x), ("y", y)):
             if not isinstance(record, Record) or record.components != 1:
                 raise ValueError(f"record pair: the {name} component must be a one-component Record, got {record!r}")
@@ -857,9 +890,40 @@ class RecordPair:
                              f"x {where(x)} and y {where(y)}; dccss does not resample: give two components recorded "
                              f"together (same dt and npts), or a window both cover")
         self.x, self.y = x, y
+        self.azimuths = None if azimuths is None or None in azimuths else tuple(float(a) for a in azimuths)
+        self.rotation = float(rotation)
+        if self.azimuths is not None:
+            gap = (self.azimuths[1] - self.azimuths[0]) % 180.0
+            if abs(gap - 90.0) > 1e-6:
+                raise ValueError(f"record pair: the components' azimuths {self.azimuths[0]:g} and "
+                                 f"{self.azimuths[1]:g} degrees are not orthogonal: a pair is two orthogonal "
+                                 f"horizontal components")
+            a = np.radians(self.azimuths)
+            self.frame = np.array([[np.sin(a[0]), np.sin(a[1])], [np.cos(a[0]), np.cos(a[1])]])  # east, north rows
+        else:
+            self.frame = np.eye(2)
+
+    @property
+    def orientation(self) -> str:
+        """How x and y are placed: by the components' azimuths, or in file order."""
+        if self.azimuths is None:
+            return "file order: x the first component, y the second (the files name no directions)"
+        return (f"x east, y north, from the components' azimuths {self.azimuths[0]:g} and {self.azimuths[1]:g} "
+                f"degrees (clockwise from north)")
+
+    def matrix(self, rotation=None) -> np.ndarray:
+        """(..., 2, 2): the components (first, second) to (x, y), turned by ``rotation`` (degrees)."""
+        angle = np.radians(self.rotation if rotation is None else np.asarray(rotation, dtype=float))
+        c, s = np.cos(angle), np.sin(angle)
+        turn = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
+        return turn @ self.frame
+
+    def _placed(self, components, rotation=None):
+        """Samples (..., 2) of the components as given, in the pair's frame (turned per case)."""
+        return np.einsum("...ij,...j->...i", self.matrix(rotation), components)
 
     @classmethod
-    def from_files(cls, paths, scale=1.0, window=None, baseline=None, units=None) -> RecordPair:
+    def from_files(cls, paths, scale=1.0, window=None, baseline=None, units=None, rotation=0.0) -> RecordPair:
         """Read and process the two files ``paths = (x, y)`` as :meth:`Record.from_file` does,
         with the same ``scale``, ``window``, ``baseline`` and ``units`` (each file's own units
         header is honoured; ``units`` must agree with it where it states units)."""
@@ -873,7 +937,12 @@ class RecordPair:
             same = "the same file" if Path(paths[0]).resolve() == Path(paths[1]).resolve() else "two identical files"
             raise ValueError(f"record pair: {str(paths[0])!r} and {str(paths[1])!r} are {same}: a pair is two "
                              f"different horizontal components of one station")
-        return cls(x, y)
+        azimuths = [peer_azimuth(p) for p in paths]
+        for p, a in zip(paths, azimuths):
+            if a == "vertical":
+                raise ValueError(f"record pair: {str(p)!r} is a vertical component (line 2 of the file); a pair is "
+                                 f"two horizontal components")
+        return cls(x, y, azimuths, rotation)
 
     @property
     def records(self) -> tuple[Record, Record]:
@@ -901,11 +970,12 @@ class RecordPair:
 
     @property
     def displacement_samples(self) -> np.ndarray:
-        return np.column_stack([self.x.displacement_samples, self.y.displacement_samples])
+        """(npts, 2): x and y in the pair's frame (m)."""
+        return self._placed(np.column_stack([self.x.displacement_samples, self.y.displacement_samples]))
 
     @property
     def velocity_samples(self) -> np.ndarray:
-        return np.column_stack([self.x.velocity_samples, self.y.velocity_samples])
+        return self._placed(np.column_stack([self.x.velocity_samples, self.y.velocity_samples]))
 
     @property
     def pgd(self) -> float:
@@ -916,24 +986,27 @@ class RecordPair:
     def warning(self) -> str:
         return "; ".join(w for w in (self.x.warning, self.y.warning) if w)
 
-    def displacement(self, t):
-        """(x, y) ground displacement (m) at times t (s): shape t.shape + (2,)."""
-        return np.stack([self.x.displacement(t), self.y.displacement(t)], axis=-1)
+    def displacement(self, t, rotation=None):
+        """(x, y) ground displacement (m) at times t (s): shape t.shape + (2,); ``rotation`` (degrees,
+        per case) broadcast against t as ``Oriented.displacement`` does (pass t[:, None] for (T, n))."""
+        return self._placed(np.stack([self.x.displacement(t), self.y.displacement(t)], axis=-1), rotation)
 
-    def velocity(self, t):
-        """(x, y) ground velocity (m/s) at times t (s): shape t.shape + (2,)."""
-        return np.stack([self.x.velocity(t), self.y.velocity(t)], axis=-1)
+    def velocity(self, t, rotation=None):
+        """(x, y) ground velocity (m/s) at times t (s), as ``displacement``."""
+        return self._placed(np.stack([self.x.velocity(t), self.y.velocity(t)], axis=-1), rotation)
 
-    def ground_acceleration(self) -> Ground:
-        """Both components' processed acceleration samples joined by straight lines."""
-        return Ground.from_samples(self.time, np.column_stack([self.x.acceleration, self.y.acceleration]))
+    def ground_acceleration(self, rotation=None) -> Ground:
+        """Both components' processed acceleration samples joined by straight lines, in the pair's frame."""
+        return Ground.from_samples(self.time, self._placed(np.column_stack([self.x.acceleration,
+                                                                            self.y.acceleration]), rotation))
 
     def attrs(self) -> dict:
         """netCDF global attributes: the pair, and each component's :meth:`Record.attrs` with its
         keys prefixed ``record_x_`` and ``record_y_`` (source, sha256, units, processing, peaks,
         warning)."""
         attrs = {"excitation": "record", "excitation_components": 2, "excitation_form": "record pair",
-                 "record_npts": self.npts, "record_dt_s": self.dt, "record_peak_horizontal_displacement_m": self.pgd}
+                 "record_npts": self.npts, "record_dt_s": self.dt, "record_peak_horizontal_displacement_m": self.pgd,
+                 "record_orientation": self.orientation, "record_rotation_deg": self.rotation}
         for name, record in (("x", self.x), ("y", self.y)):
             attrs.update({f"record_{name}_{k.removeprefix('record_')}": v for k, v in record.attrs().items()
                           if k != "excitation"})

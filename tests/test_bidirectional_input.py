@@ -273,7 +273,7 @@ def test_pair_of_the_same_file_equals_the_record():
         assert np.array_equal(pair.displacement_samples[:, k], record.displacement_samples)
         assert np.array_equal(pair.velocity_samples[:, k], record.velocity_samples)
     assert (pair.t_start, pair.t_end, pair.npts, pair.dt) == (record.t_start, record.t_end, record.npts, record.dt)
-    assert np.array_equal(pair.time, record.time) and pair.kind == "record" and pair.parameters == ()
+    assert np.array_equal(pair.time, record.time) and pair.kind == "record" and pair.parameters == ("rotation",)
     assert pair.pgd == pytest.approx(np.sqrt(2) * record.pgd, rel=1e-15)
 
 

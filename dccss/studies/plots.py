@@ -66,7 +66,8 @@ HISTORY_ROWS = [
 ]
 AXIS_SYMBOLS = {"record": "record", "amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$",
                 "theta2_0": "$θ^2(t_0)$", "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$",
-                "component": "component of $X_g$", "friction": "friction μ", "damping": "damping ζ"}
+                "rotation": "rotation of the pair", "component": "component of $X_g$", "friction": "friction μ",
+                "damping": "damping ζ"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 

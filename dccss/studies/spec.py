@@ -27,7 +27,7 @@ from .grid import PLATE3_FOLLOWS, Grid
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
 #: (degrees) turns a one-component excitation into bidirectional motion along it, ``component``
 #: (x, y or both) keeps one or both components of a two-component one
-EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "component")
+EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "rotation", "component")
 #: the isolated structure's parameters (``structure``; sweeping one gives a study a structure)
 STRUCTURE_AXES = ("friction", "damping")
 AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
@@ -52,7 +52,7 @@ def axis_units(name):
     """CF units of a sweep axis (None for the categorical prototype axis)."""
     if name in CATEGORICAL:
         return None
-    if name in ANGLES or name in ("theta2_0", "azimuth"):
+    if name in ANGLES or name in ("theta2_0", "azimuth", "rotation"):
         return "degree"
     return {"omega": "rad s-1", "scale": "1", "dt": "s", "friction": "1", "damping": "1"}.get(name, "m")
 
@@ -279,6 +279,9 @@ def _swept_excitation(excitation, axes, spec):
     for key in ("amplitude", "omega"):
         if key in axes and key not in excitation.parameters:
             raise StudyError(f"sweep.{key}: only a sine excitation has an {key}; use 'scale' for {kind!r}")
+    if "rotation" in axes and "rotation" not in excitation.parameters:
+        raise StudyError("sweep.rotation: turns a record pair (file: [x, y]); a one-component excitation is "
+                         "oriented by sweep.azimuth")
     if "azimuth" in axes and "azimuth" not in excitation.parameters:
         if excitation.components != 1:
             raise StudyError("sweep.azimuth: orients a one-component excitation, but this one has two components "
