@@ -35,9 +35,16 @@ def beyond_reach(geometry, Xg, theta2_0=0.0, azimuth=0.0, *, spatial=False):
     if spatial:
         h = np.stack(np.broadcast_arrays(np.cos(azimuth), np.sin(azimuth)), axis=-1)
         distance = np.linalg.norm(Xg[0] + (L * s)[..., None] * h - Xg, axis=-1)
-    else:
-        distance = np.abs(Xg[0] + L * s - Xg)
-    out = np.where((distance >= L).any(axis=0), np.argmax(distance >= L, axis=0), -1)
+        out = np.where((distance >= L).any(axis=0), np.argmax(distance >= L, axis=0), -1)
+        return int(out) if out.ndim == 0 else out
+    # planar: the farthest the motion gets from RB3 first, without a (T, cases) temporary
+    centre = Xg[0] + L * s
+    far = np.maximum(centre - Xg.min(axis=0), Xg.max(axis=0) - centre) >= L
+    out = np.full(np.shape(far), -1)
+    for index in zip(*np.nonzero(far)) if np.ndim(far) else ([()] if far else []):
+        column = Xg[(slice(None), *index)] if Xg.ndim > 1 else Xg
+        c = np.broadcast_to(centre, np.shape(far))[index]
+        out[index] = int(np.argmax(np.abs(c - column) >= np.broadcast_to(L, np.shape(far))[index]))
     return int(out) if out.ndim == 0 else out
 
 

@@ -704,7 +704,7 @@ class _Batch:
         if all(d == 1 for d in Xg.shape[1:]):  # one ground motion for all cases
             self.Xg = np.array(Xg.reshape(T, 1), dtype=float, order="C")
         else:
-            self.Xg = np.array(np.broadcast_to(Xg, (T,) + shape).reshape(T, N), dtype=float, order="C")
+            self.Xg = np.ascontiguousarray(np.broadcast_to(Xg, (T,) + shape).reshape(T, N), dtype=float)
         self.q0 = np.array(q0.reshape(N, 9), dtype=float, order="C")
 
         def flat(x, dtype=float):
