@@ -12,7 +12,9 @@ Format (lengths in m, angles in degrees, times in s)::
                 # or {kind: record, file: rec.AT2, scale: 1.0, window: [t0, t1], baseline: linear,
                 #     units: g}  (a PEER NGA .AT2/.VT2/.DT2 or a two-column text file with its units
                 #     in a header or in `units`; see dccss.records)
-                # any kind takes `scale: factor`
+                # any kind takes `scale: factor`; a record also `scale: {to: spectral_acceleration,
+                #   period: T, damping: 0.05, target: Sa}` (g): scaled so that its Sa(T) is the target
+                #   (a pair's RotD50, or `definition: geometric_mean`; dccss.spectra)
                 # Bidirectional ground motion (two horizontal components x, y):
                 # - any of the above with `azimuth: 30.0` (degrees from +x towards +y): the motion
                 #   applied along that direction, X(t) (cos az, sin az); without it, one component

@@ -17,6 +17,7 @@ A study file (schema: ``dccss/schemas/study.schema.yaml``, which the workflow ap
     prototype: DFP1              # the base device: a name (Table 1 or prototypes) or the 13 parameters
     symmetric: true              # plate 3 and cap 23 follow plate 1 and cap 21
     excitation: {kind: sine, amplitude: 0.27, omega: 30.0, duration: 1.0}   # or table / record
+    structure: {friction: 0.05, damping: 0.0}   # optional: a superstructure whose stroke drives the device
     theta2_0: 0.0                # degrees
     dt: 0.01                     # s (or a sweep axis; then this is the histories' default)
     models: [compliant, stick_slip]
@@ -31,11 +32,16 @@ A study file (schema: ``dccss/schemas/study.schema.yaml``, which the workflow ap
     histories: [{alpha21: 10.0, h2: 0.15}]          # cases also run in full (or: all)
     animate: [{alpha21: 10.0, h2: 0.15}]            # histories also animated (GIF), or: all
 
-Sweep axes: ``prototype`` (a list of device names), any geometry parameter (overriding the
-device's), the excitation's own parameters (``amplitude`` and ``omega`` of a sine), ``scale``
-(multiplies X_g(t) of any excitation; recorded motions are processed linearly, so this equals
-scaling the record), ``theta2_0`` and ``dt`` (the chunks take the cases by step size first and
-solve each step size as one batch).
+Sweep axes: ``record`` (a suite: files, pairs [x, y] or patterns, each named by its stem, a
+pair by its station; the excitation then gives no file; the cases of a record are chunked on
+their own, and the combined dataset adds each record's peaks and the suite statistics,
+``combine.statistics``), ``prototype`` (a list of device names), any geometry parameter
+(overriding the device's), the excitation's own parameters (``amplitude`` and ``omega`` of a
+sine, ``rotation`` of a record pair), ``scale`` (multiplies X_g(t) of any excitation; recorded
+motions are processed linearly, so this equals scaling the record), ``azimuth`` and
+``component`` (bidirectional motion), ``friction`` and ``damping`` (the structure's, with
+``structure:``), ``theta2_0`` and ``dt`` (the chunks take the cases by step size first and solve
+each step size as one batch).
 """
 
 from .combine import combine
