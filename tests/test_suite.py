@@ -119,13 +119,19 @@ def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
         source = suite / "records" / f"{name}.AT2"
         (work / "config/studies/records_suite" / f"{name}.AT2").write_bytes(source.read_bytes())
     study_file = work / "config/studies/suite.yaml"
-    config = {**CONFIG, "sweep": {"record": ["records_suite/RSN11_NORTH.AT2", "records_suite/RSN12_SOUTH.AT2"],
-                                  "scale": [1.0, 2.5]}, "histories": [{"record": "RSN12_SOUTH", "scale": 2.5}]}
+    # the suite drives a structure, its damping swept: both axes through the workflow
+    config = {**CONFIG, "structure": {"friction": 0.05},
+              "sweep": {"record": ["records_suite/RSN11_NORTH.AT2", "records_suite/RSN12_SOUTH.AT2"],
+                        "damping": [0.0, 0.1]}, "histories": [{"record": "RSN12_SOUTH", "damping": 0.1}]}
     study_file.write_text(yaml.safe_dump(config))
     run = snakemake(work, "--configfile", "config/studies/suite.yaml")
     assert run.returncode == 0, run.stderr[-3000:]
     ds = xr.open_dataset(work / "results/studies/suite/suite.nc")
-    assert list(ds["record"].values) == ["RSN11_NORTH", "RSN12_SOUTH"]
+    assert list(ds["record"].values) == ["RSN11_NORTH", "RSN12_SOUTH"] and list(ds["damping"].values) == [0.0, 0.1]
+    stroke = ds["stroke_max_abs"].sel(model="compliant").values
+    assert np.all(stroke[:, 1] < stroke[:, 0])  # damping lowers the peak stroke
+    history = xr.open_dataset(work / "results/studies/suite/histories/compliant_0.nc")
+    assert history.attrs["structure_damping"] == 0.1 and history.attrs["record_source"] == "RSN12_SOUTH.AT2"
     chunks = sorted(p.name for p in (work / "results/studies/suite/chunks").iterdir())
     assert chunks == [f"{m}_{r}.0.nc" for m in ("compliant", "stick_slip") for r in ("RSN11_NORTH", "RSN12_SOUTH")]
     assert (work / "figures/studies/suite/maps.png").is_file()
@@ -161,3 +167,20 @@ def test_a_suite_scaled_to_a_spectrum_has_the_target_at_its_period(suite):
     assert ds["stroke_max_abs_suite"].sizes == {"statistic": 4, "model": 2, "friction": 2}
     with pytest.raises(StudyError, match="sweep.scale: the records are scaled to a spectral acceleration"):
         Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": target}}, suite)
+
+
+def test_a_suite_of_tables(tmp_path):
+    """The record axis takes displacement tables too, named by their stems."""
+    t = np.linspace(0.0, 4.0, 401)
+    for k, name in enumerate(("T1", "T2")):
+        np.savetxt(tmp_path / f"{name}.csv", np.column_stack([t, (0.05 + 0.03 * k) * np.sin(2.5 * t)]),
+                   delimiter=",", header="time,displacement", comments="")
+    config = {"study": {"name": "tables"}, "prototype": "DFP1", "excitation": {"kind": "table"}, "dt": 0.01,
+              "models": ["compliant"], "sweep": {"record": ["T*.csv"], "scale": [1.0, 2.0]}}
+    study = Study.from_config(config, tmp_path)
+    ds = _combined(study)
+    assert list(ds["record"].values) == ["T1", "T2"]
+    assert np.allclose(ds["record_pgd"].values, [0.05, 0.08], rtol=1e-3) and np.isnan(ds["record_pga"].values).all()
+    theta = ds["theta2_max_abs"].sel(model="compliant", scale=1.0).values
+    L = float(study.grid.geometry([0]).L[0])
+    assert np.allclose(np.radians(theta), np.arcsin(np.array([0.05, 0.08]) / L), rtol=1e-4)

@@ -98,15 +98,21 @@ PEAKS = (("record_pga", "pga_m_per_s2", "m s-2", "peak ground acceleration of th
 
 
 def record_peaks(study) -> dict:
-    """PGA, PGV and PGD of each record of the axis (of each component of a pair: dimension ``component``
-    of length 2 is not added; a pair's are the larger of its components') and its source files."""
+    """PGA, PGV and PGD of each record of the axis (a pair's: the larger of its components'; a
+    displacement table's PGD only, its PGA and PGV NaN) and its source files."""
     out = {}
     for name, attr, units, long_name in PEAKS:
         values = []
         for excitation in study.records.values():
-            a = _record_attrs(excitation)
+            a = excitation.attrs()
             keys = [k for k in a if k.endswith(attr) and k.startswith("record_")]
-            values.append(max(float(a[k]) for k in keys))
+            if keys:
+                values.append(max(float(a[k]) for k in keys))
+            elif attr == "pgd_m":  # a table: its samples (scaled as the study scales them)
+                samples = np.reshape(excitation.displacement(_inner(excitation).time), (-1, excitation.components))
+                values.append(float(np.max(np.linalg.norm(samples, axis=1))))
+            else:
+                values.append(np.nan)
         pair = " (the larger of a pair's components)" if study.excitation.components == 2 else ""
         out[name] = xr.Variable(("record",), np.array(values), {"units": units, "long_name": long_name + pair})
     sources = [" ".join(e) if isinstance(e, list) else e for e in study.record_entries.values()]
@@ -115,10 +121,11 @@ def record_peaks(study) -> dict:
     return out
 
 
-def _record_attrs(excitation) -> dict:
-    while not hasattr(excitation, "attrs") or "record_npts" not in excitation.attrs():
+def _inner(excitation):
+    """The excitation a wrapper (``Component``, ``Oriented``, ``Scaled``) is built on."""
+    while hasattr(excitation, "excitation"):
         excitation = excitation.excitation
-    return excitation.attrs()
+    return excitation
 
 
 #: the suite statistics over the ``record`` dimension (EN 1998-1 4.3.3.4.3 and ASCE 7-22 17.3.4: the
