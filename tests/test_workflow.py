@@ -124,3 +124,15 @@ def test_a_library_change_reruns_what_it_affects(reproduction, tmp_path):
     jobs = planned()
     assert "simulate" not in jobs and "validate" not in jobs and jobs["animate"] == 4
     assert sum(n for rule, n in jobs.items() if rule.startswith("figures_")) == 6
+
+
+def test_the_report_builds_without_a_docutils_error(reproduction, tmp_path):
+    """Captions are reStructuredText in the report: a '|' (as in |C_q|) was read as a substitution and
+    printed ERROR/3 four times while the build still exited 0."""
+    from conftest import snakemake
+
+    run = snakemake(reproduction, "--report", str(tmp_path / "report.zip"))
+    assert run.returncode == 0, run.stderr[-2000:]
+    printed = run.stdout + run.stderr
+    assert "(ERROR/" not in printed and "(SEVERE/" not in printed and "(WARNING/" not in printed, printed[-3000:]
+    assert (tmp_path / "report.zip").stat().st_size > 0
