@@ -195,6 +195,17 @@ def solve(ground: Ground, times, L, mu, zeta) -> Response:
     return Response(u, v, z, u / L + mu * z, stick)
 
 
+#: stick/slip phases in one sample interval beyond which the solver gives up (a chatter it cannot resolve)
+MAX_PHASES = 10_000
+
+
+def _count(phases, t):
+    if phases >= MAX_PHASES:
+        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
+                           f"t = {t:g} s: the friction chatters; report the record and the structure")
+    return phases + 1
+
+
 # --- one component: exact ----------------------------------------------------------------------
 
 def _slide(u0, v0, p0, p1, omega, zeta, tau):
@@ -273,8 +284,9 @@ def _line(time, a0, a1, omega, zeta, friction):
     z[0] = demand / friction if not sliding else (sign if friction > 0 else 0.0)
     for k in range(n - 1):
         h = time[k + 1] - time[k]
-        tau = 0.0
+        tau, phases = 0.0, 0
         while tau < h:
+            phases = _count(phases, time[k])
             b0, b1 = a0[k] + a1[k] * tau, a1[k]  # the ground's acceleration from tau on
             if not sliding:
                 # sticking: the demand -a_g - ω² u is a straight line in t; it ends at ±μ g
@@ -329,8 +341,9 @@ def _plane(ground: Ground, omega, zeta, friction):
     z[0] = demand / friction if not sliding else _direction(w, demand, friction)
     for k in range(n - 1):
         h = time[k + 1] - time[k]
-        tau = 0.0
+        tau, phases = 0.0, 0
         while tau < h:
+            phases = _count(phases, time[k])
             b0, b1 = a0[k] + a1[k] * tau, a1[k]
             end = h - tau
             if not sliding:
