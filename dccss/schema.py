@@ -17,6 +17,8 @@ from importlib.resources import files
 
 import yaml
 from jsonschema import Draft202012Validator
+from referencing import Registry, Resource
+from referencing.jsonschema import DRAFT202012
 
 TYPE_NAMES = {"number": "a number", "integer": "an integer", "string": "a string", "array": "a list",
               "object": "a mapping", "boolean": "true or false", "null": "empty"}
@@ -26,6 +28,14 @@ TYPE_NAMES = {"number": "a number", "integer": "an integer", "string": "a string
 def schema(name) -> dict:
     """The schema ``dccss/schemas/<name>.schema.yaml``."""
     return yaml.safe_load(files("dccss").joinpath("schemas", f"{name}.schema.yaml").read_text(encoding="utf-8"))
+
+
+def _retrieve(uri):
+    """Another schema of the package, for a reference such as ``case.schema.yaml#/$defs/device``."""
+    return Resource.from_contents(schema(uri.removesuffix(".schema.yaml")), default_specification=DRAFT202012)
+
+
+REGISTRY = Registry(retrieve=_retrieve)
 
 
 @dataclass(frozen=True)
@@ -41,7 +51,7 @@ class SchemaError:
 def errors(name, instance) -> list[SchemaError]:
     """The errors of ``instance`` against schema ``name``, one per key (a mapping's missing keys, and
     its unknown keys, in one error each), in the order of the file."""
-    found = sorted(Draft202012Validator(schema(name)).iter_errors(instance), key=lambda e: _order(e.absolute_path))
+    found = sorted(Draft202012Validator(schema(name), registry=REGISTRY).iter_errors(instance), key=lambda e: _order(e.absolute_path))
     out, seen = [], set()
     for err in found:
         path = tuple(err.absolute_path)
