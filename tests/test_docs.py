@@ -163,3 +163,18 @@ def test_the_site_builds_strict(tmp_path):
     assert "dccss run" in (site / "reference/cli/index.html").read_text(encoding="utf-8")
     assert (site / "figures/fig07.png").exists() and (site / "figures/validation/index.html").exists()
     assert "theta2_stick" in (site / "reference/datasets/index.html").read_text(encoding="utf-8")
+
+
+@pytest.mark.slow
+def test_the_workflow_meets_the_catalogs_standardized_usage():
+    """The Snakemake workflow catalog's rules: the workflow in workflow/Snakefile, config/README.md, a
+    .snakemake-workflow-catalog.yml, and its linter content with the shipped default config."""
+    import yaml
+
+    assert (ROOT / "workflow" / "Snakefile").is_file() and (ROOT / "config" / "README.md").is_file()
+    usage = yaml.safe_load((ROOT / ".snakemake-workflow-catalog.yml").read_text(encoding="utf-8"))["usage"]
+    assert usage["software-stack-deployment"] and "--profile profiles/default" in usage["mandatory-flags"]["flags"]
+    for args in ([], ["--configfile", "config/studies/pad_shape.yaml"]):
+        run = subprocess.run([sys.executable, "-m", "snakemake", "--lint", *args], cwd=ROOT, capture_output=True,
+                             text=True, timeout=300)
+        assert run.returncode == 0 and "Congratulations" in run.stdout + run.stderr, run.stdout + run.stderr

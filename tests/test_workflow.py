@@ -8,6 +8,7 @@ run from scratch gives byte-identical files.
 
 import hashlib
 import json
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -135,4 +136,55 @@ def test_the_report_builds_without_a_docutils_error(reproduction, tmp_path):
     assert run.returncode == 0, run.stderr[-2000:]
     printed = run.stdout + run.stderr
     assert "(ERROR/" not in printed and "(SEVERE/" not in printed and "(WARNING/" not in printed, printed[-3000:]
-    assert (tmp_path / "report.zip").stat().st_size > 0
+    with zipfile.ZipFile(tmp_path / "report.zip") as archive:
+        names = {Path(name).name for name in archive.namelist()}
+        page = archive.read(next(n for n in archive.namelist() if n.endswith("report.html"))).decode()
+    # the validation table and the animations are pages the report shows, not downloads
+    assert {"validation.html", *(f"{name}.html" for name in CONFIG["animations"])} <= names
+    # each figure says what it shows (its own title), not the list of its rule's figures
+    for fig in FIGURES:
+        assert json.dumps(CONFIG["figures"][fig]["title"])[1:40] in page, fig
+
+
+def test_a_script_is_a_parameter_of_its_rule_and_its_age_means_nothing(reproduction, tmp_path):
+    """A fresh clone's files have the times of the checkout: a script newer than the committed figures
+    must not rerun them ("Code has changed since last execution"); an edit to a script must rerun the
+    rules that run it, and only those."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+    import time
+
+    work = tmp_path / "work"
+    shutil.copytree(reproduction, work, symlinks=True)
+
+    def planned():
+        run = subprocess.run([sys.executable, "-m", "snakemake", "--profile", "profiles/default", "-n"],
+                             cwd=work, capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr[-2000:]
+        assert "Code has changed" not in run.stdout + run.stderr
+        return {p[0]: int(p[1]) for p in (line.split() for line in run.stdout.splitlines())
+                if len(p) == 2 and p[1].isdigit() and p[0] != "total"}
+
+    later = time.time() + 60
+    for script in (work / "workflow" / "scripts").glob("*.py"):
+        os.utime(script, (later, later))
+    assert planned() == {}
+    script = work / "workflow" / "scripts" / "validate.py"
+    script.write_text(script.read_text() + "\n# edited\n")
+    jobs = planned()
+    assert jobs.get("validate") == 1 and "simulate" not in jobs and "animate" not in jobs
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "config" / "studies").glob("*.yaml")))
+def test_every_shipped_study_draws_its_committed_figures(name, shipped_study):
+    """A shipped study rerun on a fresh clone leaves `git status` clean: every committed figure,
+    table and animation of the study is what the run draws, byte for byte."""
+    work = shipped_study(name)
+    committed = sorted(p for p in (ROOT / "figures" / "studies" / name).rglob("*") if p.is_file())
+    drawn = sorted(p for p in (work / "figures" / "studies" / name).rglob("*") if p.is_file())
+    assert committed, f"figures/studies/{name} holds no committed figure"
+    assert [p.relative_to(ROOT) for p in committed] == [p.relative_to(work) for p in drawn]
+    differ = [str(p.relative_to(ROOT)) for p, q in zip(committed, drawn) if p.read_bytes() != q.read_bytes()]
+    assert differ == []

@@ -179,7 +179,8 @@ def all_targets():
     """Every result; for the paper study (a `figures:` section) also its figures and checks; the
     animations."""
     paper = ["figures/validation.md", "results/validation.ok"] if "figures" in config else []
-    return all_cases() + all_breakaway() + paper + figure_targets() + animation_targets()
+    targets = all_cases() + all_breakaway() + paper + figure_targets() + animation_targets()
+    return targets + report_pages(targets)
 
 
 # --- animations ---

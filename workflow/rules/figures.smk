@@ -9,11 +9,12 @@ for group, figs in FIGURE_GROUPS.items():
         output:
             png=[
                 report(f"figures/{fig}{{variant}}.png", caption="../report/figure.rst", category="Figures",
-                       subcategory=fig)
+                       subcategory=fig, labels={"figure": f"{fig}{{variant}}", "shows": FIGURES[fig].title})
                 for fig in figs
             ],
             pdf=[f"figures/{fig}{{variant}}.pdf" for fig in figs],
         params:
+            script=script_hash("figures.py"),
             datasets=lambda w, group=group: figure_datasets(group, w.variant),
             figures={fig: config["figures"][fig] for fig in figs},
             titles={fig: FIGURES[fig].title for fig in figs},
@@ -34,8 +35,9 @@ rule animate:
     input:
         animation_input,
     output:
-        report("figures/animations/{name}.gif", caption="../report/animation.rst", category="Animations"),
+        "figures/animations/{name}.gif",  # in the report as results/report/animations/{name}.html
     params:
+        script=script_hash("animate.py"),
         window=lambda w: {k: v for k, v in config["animations"][w.name].items() if k in ("start", "end")},
         library=ANIMATION_SOURCE,
     wildcard_constraints:

@@ -30,6 +30,19 @@ def source_hash(include=None, exclude=()):
     return digest.hexdigest()
 
 
+SCRIPTS = Path(workflow.current_basedir).parent / "scripts"  # beside rules/, this file's folder
+
+
+def script_hash(name):
+    """SHA-256 of a rule's script and of the log helper it imports: a rule takes it as a parameter, so
+    that editing the script reruns the rule (the 'params' trigger; the 'code' trigger compares the
+    script's modification time with the outputs', which means nothing in a fresh clone)."""
+    digest = hashlib.sha256()
+    for path in (SCRIPTS / name, SCRIPTS / "_log.py"):
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
 COMPUTE_SOURCE = source_hash(exclude=NOT_COMPUTING)
 FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py", "paper/specs.py"))
 STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py"))

@@ -14,6 +14,7 @@ rule simulate:
     output:
         [f"results/cases/{{case_set}}/{{proto}}_{{model}}_dt{dt_label(dt)}.nc" for dt in config["dt"]],
     params:
+        script=script_hash("simulate.py"),
         cases=case_mappings,
         library=COMPUTE_SOURCE,
     log:
@@ -29,6 +30,7 @@ rule breakaway:
     output:
         "results/breakaway/{proto}_{normals}.nc",
     params:
+        script=script_hash("breakaway.py"),
         sweep=breakaway_params,
         library=COMPUTE_SOURCE,
     log:

@@ -11,6 +11,7 @@ rule study_chunk:
     output:
         "results/studies/{study}/chunks/{model}_{chunk}.nc",
     params:
+        script=script_hash("study_chunk.py"),
         study_dir=str(STUDY_FILE.parent),
         spec=chunk_spec,
         library=COMPUTE_SOURCE,
@@ -28,6 +29,7 @@ rule study_combine:
     output:
         "results/studies/{study}/{study}.nc",
     params:
+        script=script_hash("study_combine.py"),
         study_dir=str(STUDY_FILE.parent),
         spec=sweep_spec(config),
         library=COMPUTE_SOURCE,
@@ -45,6 +47,7 @@ rule study_history:
     output:
         "results/studies/{study}/histories/{model}_{i}.nc",
     params:
+        script=script_hash("study_history.py"),
         study_dir=str(STUDY_FILE.parent),
         case=lambda w: history_mapping(STUDY, int(w.i), w.model),
         library=COMPUTE_SOURCE,
@@ -68,6 +71,7 @@ rule study_plots:
         ],
         [f for f in study_plots() if not f.endswith(".png")],
     params:
+        script=script_hash("study_plots.py"),
         caption=f"study {STUDY.name}: {STUDY.description}".rstrip(": "),
         marks=STUDY.marks,
         labels=history_labels(),
@@ -85,9 +89,9 @@ rule study_animate:
     input:
         "results/studies/{study}/histories/{model}_{i}.nc",
     output:
-        report("figures/studies/{study}/animations/{model}_{i}.gif", caption="../report/animation.rst",
-               category="Animations"),
+        "figures/studies/{study}/animations/{model}_{i}.gif",  # in the report as an HTML page (report.smk)
     params:
+        script=script_hash("animate.py"),
         window={},
         library=ANIMATION_SOURCE,
     log:

@@ -94,4 +94,5 @@ def animation_files():
 
 
 def all_targets():
-    return [f"results/studies/{STUDY.name}/{STUDY.name}.nc"] + study_plots() + animation_files()
+    targets = [f"results/studies/{STUDY.name}/{STUDY.name}.nc"] + study_plots() + animation_files()
+    return targets + report_pages(targets)

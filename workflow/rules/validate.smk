@@ -13,9 +13,10 @@ rule validate:
         unpack(validation_inputs),
     output:
         md="figures/validation.md",
-        csv=report("results/validation.csv", caption="../report/validation.rst", category="Validation"),
+        csv="results/validation.csv",
         json="results/validation.json",
     params:
+        script=script_hash("validate.py"),
         results=result_keys(),
         case_variants=list(config["case_sets"]),
         breakaway_variants=(config.get("breakaway") or {}).get("normals", []),
@@ -33,6 +34,8 @@ rule check_validation:
         "results/validation.json",
     output:
         "results/validation.ok",
+    params:
+        script=script_hash("check_validation.py"),
     log:
         "logs/check_validation.log",
     conda:
