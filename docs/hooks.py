@@ -221,22 +221,24 @@ def _examples():
 
     sine = Sine(amplitude=0.05, omega=30.0, duration=0.03)
     return {
-        "A planar history (`dccss run`, `dccss.simulate`; stick-slip adds the end of each sticking phase)":
+        ("A planar history", "What `dccss run` and `dccss.simulate` write for a one-component motion; stick-slip "
+         "adds the end of each sticking phase (`_stick`)."):
             simulate(DFP1, sine, model="stick_slip", dt=0.01),
-        "A history in space (two components: a record pair, an x, y table or an `azimuth`)":
+        ("A history in space", "Two components (a record pair, an x, y table, or a one-component input along an "
+         "`azimuth`): the spatial models."):
             simulate(DFP1, Oriented(sine, 30.0), model="stick_slip", dt=0.01),
-        "What a structure adds (`structure:`; one component, a pair adds `_x`, `_y`)":
+        ("What a structure adds", "With `structure:` (one component; a pair adds `_x` and `_y`)."):
             simulate(DFP1, sine, model="compliant", dt=0.01, structure=Structure(friction=0.05)),
     }
 
 
 def datasets_page() -> str:
     out, seen = [], set()
-    for title, ds in _examples().items():
+    for (title, what), ds in _examples().items():
         names = [n for n in [*ds.coords, *ds.data_vars] if n not in seen]
         attrs = [a for a in ds.attrs if a not in seen]
         seen.update(names, attrs)
-        out += [f"## {title}", "", "| variable | dimensions | units | long name |", "|---|---|---|---|"]
+        out += [f"## {title}", "", what, "", "| variable | dimensions | units | long name |", "|---|---|---|---|"]
         for n in names:
             v = ds[n]
             out.append(f"| `{n}` | {', '.join(v.dims)} | {_cell(v.attrs.get('units', ''))} | "
