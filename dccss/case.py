@@ -58,7 +58,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from .checks import CaseError, check_keys, choice, number
+from .checks import CaseError, Problems, check_keys, choice, number
 from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import PARAMETERS, Geometry
@@ -89,7 +89,9 @@ def geometry_from(value, key="prototype") -> Geometry:
             raise CaseError(f"{key}: unknown prototype {value!r}; known: {sorted(TABLE1)}")
         value = TABLE1[value]
     check_keys(value, key, PARAMETERS)
-    params = {k: number(value[k], f"{key}.{k}") for k in PARAMETERS}
+    problems = Problems(value)
+    params = {k: problems.check(k, number, value[k], f"{key}.{k}") for k in PARAMETERS}
+    problems.raise_if_any()
     try:
         return Geometry.from_degrees(**params)
     except ValueError as err:
@@ -265,10 +267,12 @@ def newton_from(value, key="newton") -> NewtonOptions:
     if value is None:
         return options
     check_keys(value, key, (), ("tol", "max_iter"))
-    tol = number(value.get("tol", options.tol), f"{key}.tol", positive=True)
+    problems = Problems(value)
+    tol = problems.check("tol", number, value.get("tol", options.tol), f"{key}.tol", positive=True)
     max_iter = value.get("max_iter", options.max_iter)
     if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
-        raise CaseError(f"{key}.max_iter: expected an integer >= 1, got {max_iter!r}")
+        problems.add("max_iter", f"{key}.max_iter: expected an integer >= 1, got {max_iter!r}")
+    problems.raise_if_any()
     return NewtonOptions(tol=tol, max_iter=max_iter)
 
 
@@ -296,37 +300,49 @@ def parameters_hash(mapping) -> str:
 
 
 def case_from(mapping, base: Path = Path(".")) -> Case:
-    """Validate a case mapping (as loaded from YAML); errors name the key."""
-    check_keys(mapping, "case", REQUIRED, OPTIONAL)
-    m = {**OPTIONAL, **mapping}
-    options = newton_from(m["newton"])
+    """Validate a case mapping (as loaded from YAML); errors name the key.
+
+    Every mistake is reported at once (one CaseError listing them, in the order of the file): each key
+    is checked on its own, a key that depends on another (the excitation on the prototype, dt on the
+    excitation) once that one has passed, and the schema adds its errors about the other keys."""
+    if not isinstance(mapping, dict):
+        check_keys(mapping, "case", REQUIRED, OPTIONAL)  # raises: not a mapping
+    problems = Problems(mapping)
+    problems.check("", check_keys, mapping, "case", REQUIRED, OPTIONAL)
+    m, dt = {**OPTIONAL, **mapping}, None
+    options = problems.check("newton", newton_from, m["newton"])
     if m["id"] is not None and not isinstance(m["id"], str):
-        raise CaseError(f"id: expected a string, got {m['id']!r}")
-    geometry = geometry_from(m["prototype"])
-    excitation = excitation_from(m["excitation"], base, geometry)
-    dt = check_step(m["dt"], excitation, "dt")
-    if excitation.components == 2 and m["normals"] != "signed":
-        raise CaseError(f"normals: two-component ground motion runs the spatial models, which use signed normals "
-                        f"only; got {m['normals']!r} (unsigned normals reproduce the paper's planar computation)")
-    structure = structure_from(m["structure"])
-    if structure is not None:
-        try:
-            structure.device_friction(geometry)
-        except StructureError as err:
-            raise CaseError(str(err)) from None
-    case = Case(geometry=geometry, excitation=excitation, dt=dt,
-                model=choice(m["model"], "model", MODELS),
-                theta2_0=np.radians(number(m["theta2_0"], "theta2_0")),
-                normals=choice(m["normals"], "normals", NORMALS), options=options, id=m["id"],
-                parameters_hash=parameters_hash(mapping),
-                capacity=choice(m["capacity"], "capacity", CAPACITY_POLICIES),
-                on_failure=choice(m["on_failure"], "on_failure", FAILURE_POLICIES),
-                structure=structure)
-    # the checks above word each error best; the schema has the last word
-    problems = schema_errors("case", mapping)
-    if problems:
-        raise CaseError("; ".join(p.message for p in problems))
-    return case
+        problems.add("id", f"id: expected a string, got {m['id']!r}")
+    geometry = problems.check("prototype", geometry_from, m["prototype"]) if "prototype" in m else None
+    excitation = (problems.check("excitation", excitation_from, m["excitation"], base, geometry)
+                  if geometry is not None and "excitation" in m else None)
+    if "dt" in m:
+        dt = (problems.check("dt", check_step, m["dt"], excitation, "dt") if excitation is not None else
+              problems.check("dt", number, m["dt"], "dt", positive=True))
+    if excitation is not None and excitation.components == 2 and m["normals"] != "signed":
+        problems.add("normals", f"normals: two-component ground motion runs the spatial models, which use signed "
+                                f"normals only; got {m['normals']!r} (unsigned normals reproduce the paper's planar "
+                                f"computation)")
+    structure = problems.check("structure", structure_from, m["structure"])
+    if structure is not None and geometry is not None:
+        problems.check("structure", _device_friction, structure, geometry)
+    model = problems.check("model", choice, m["model"], "model", MODELS) if "model" in m else None
+    theta2_0 = problems.check("theta2_0", number, m["theta2_0"], "theta2_0")
+    normals = problems.check("normals", choice, m["normals"], "normals", NORMALS)
+    capacity = problems.check("capacity", choice, m["capacity"], "capacity", CAPACITY_POLICIES)
+    on_failure = problems.check("on_failure", choice, m["on_failure"], "on_failure", FAILURE_POLICIES)
+    problems.raise_if_any(schema_errors("case", mapping))
+    return Case(geometry=geometry, excitation=excitation, dt=dt, model=model, theta2_0=np.radians(theta2_0),
+                normals=normals, options=options, id=m["id"], parameters_hash=parameters_hash(mapping),
+                capacity=capacity, on_failure=on_failure, structure=structure)
+
+
+def _device_friction(structure, geometry):
+    """The structure's device friction on ``geometry``, checked (a CaseError otherwise)."""
+    try:
+        return structure.device_friction(geometry)
+    except StructureError as err:
+        raise CaseError(str(err)) from None
 
 
 def load_case(path) -> Case:

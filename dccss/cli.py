@@ -1,28 +1,51 @@
-"""Command line: ``dccss run CASE.yaml -o OUT.nc``, ``dccss animate RESULT.nc -o OUT.gif|html|mp4`` and
-``dccss plot RESULT.nc -o OUT.png|pdf`` (also ``python -m dccss ...``).
+"""Command line: ``dccss run CASE.yaml -o OUT.nc|OUT.csv``, ``dccss check CASE_OR_STUDY.yaml``,
+``dccss animate RESULT.nc -o OUT.gif|html|mp4`` and ``dccss plot RESULT.nc -o OUT.png|pdf`` (also
+``python -m dccss ...``).
 
 Exit codes: 0 written (also a history marked failed with ``on_failure: mark``), 2 bad input,
 3 solver failure, 4 the pad reached a ring with ``capacity: error``. Warnings (an implausible
 record, a retaining ring reached, a history cut short or marked failed) are one line each on
 stderr; a progress line is shown while stepping when stderr is a terminal (not with --quiet).
+``dccss run --help`` lists the case file's keys (from its schema), the exit codes and the
+``DCCSS_BACKEND`` environment variable. ``dccss run`` and ``dccss check`` do not import the
+drawing code (matplotlib).
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import sys
+import textwrap
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 from ._version import __version__
-from .case import CaseError, load_case
-from .files import write_netcdf
+from .case import CaseError, case_from, load_case
+from .excitation import step_times
+from .files import write_csv, write_netcdf
 from .mechanics import backend
 from .mechanics.capacity import CapacityError
+from .mechanics.models import MODELS
 from .mechanics.newton import ConvergenceError
 from .mechanics.structure import G
+from .schema import schema
+
+#: what ``dccss run -o OUT`` writes, by the suffix of OUT
+OUTPUTS = {".nc": "the netCDF dataset", ".csv": "a CSV table of the history (the dataset's attributes as # lines)"}
+#: the exit codes of ``dccss run`` (``dccss check``: 0 valid, 2 not)
+EXIT_CODES = {0: "written (also a history marked failed with on_failure: mark)",
+              2: "bad input: the case file, the output's suffix or DCCSS_BACKEND; nothing is run or written",
+              3: "solver failure (on_failure: error); nothing is written",
+              4: "the pad reached a retaining ring (capacity: error); nothing is written"}
+#: what each value of DCCSS_BACKEND runs (``dccss.mechanics.backend``)
+BACKEND_CHOICES = {"auto": "the compiled kernels where numba is installed and the run is large enough for them to "
+                           "pay, the numpy reference otherwise (the default)",
+                   "numba": "always the compiled kernels (an error where numba is not installed)",
+                   "numpy": "always the numpy reference"}
 
 
 def _summary(ds) -> str:
@@ -60,14 +83,19 @@ def _structure(ds) -> str:
 def _kinematics(ds) -> str:
     if ds.attrs.get("motion") == "bidirectional":
         interp = max(float(np.nanmax(np.abs(ds[name].values))) for name in ds if name.startswith("I_"))
-        return (f"{ds.attrs['model']}, bidirectional, {ds.sizes['t'] - 1} steps: max tilt = "
+        return (f"{ds.attrs['model']}, bidirectional, {_steps(ds.sizes['t'])}: max tilt = "
                 f"{np.nanmax(ds['tilt'].values):.3f} deg, max rise = {100 * float(ds['rise'].max()):.3f} cm, "
                 f"max |interpenetration| = {1e3 * interp:.4g} mm")
     theta2 = ds["theta2"].values
     interp = max(float(np.nanmax(np.abs(ds[f"I_{c}"].values))) for c in "ABCD")
-    return (f"{ds.attrs['model']}, {ds.sizes['t'] - 1} steps: max |theta2| = "
+    return (f"{ds.attrs['model']}, {_steps(ds.sizes['t'])}: max |theta2| = "
             f"{np.nanmax(np.abs(theta2)):.3f} deg, max rise = {100 * float(ds['rise'].max()):.3f} cm, "
             f"max |interpenetration| = {1e3 * interp:.4g} mm")
+
+
+def _steps(states) -> str:
+    """The steps of a history of ``states`` stored instants (t_0 and the end of each step)."""
+    return f"{states - 1} step{'' if states == 2 else 's'} ({states} state{'' if states == 1 else 's'})"
 
 
 def warnings_of(ds) -> list[str]:
@@ -111,8 +139,6 @@ class _Progress:
 def _failed(args, kind, err, code) -> int:
     """Say why the case failed, remove an older file at the output path (it is not this case's result)
     and return the exit code."""
-    from pathlib import Path
-
     path, note = Path(args.output), ""
     if path.is_file():
         path.unlink()
@@ -125,16 +151,150 @@ def _warn_line(message, category, *args, **kwargs):
     return f"dccss: warning: {message}\n"
 
 
+def _wrap(label, text, indent=15, width=100) -> str:
+    """One entry of the help's lists: ``label`` in a column, ``text`` wrapped beside it."""
+    return textwrap.fill(text, width, initial_indent=f"  {label:<{indent - 2}}", subsequent_indent=" " * indent)
+
+
+def _case_keys() -> list[str]:
+    """The case file's top-level keys, each with the first sentence of its description, its allowed values
+    and its default, from dccss/schemas/case.schema.yaml."""
+    spec, out = schema("case"), []
+    for key, prop in spec["properties"].items():
+        text = re.split(r"(?<=\.)\s+(?=[A-Z])", " ".join(prop.get("description", "").split()))[0].rstrip(".")
+        allowed = prop.get("enum") or prop.get("properties", {}).get("kind", {}).get("enum") or \
+            (MODELS if key == "model" else ())
+        if allowed and not all(re.search(rf"\b{re.escape(str(v))}\b", text) for v in allowed):
+            text += f"; {'kind: ' if 'enum' not in prop and key != 'model' else ''}one of {', '.join(allowed)}"
+        if key in spec["required"]:
+            text += "; required"
+        elif prop.get("default") is not None:
+            text += f"; default {prop['default']}"
+        out.append(_wrap(key, text))
+    return out
+
+
+def run_epilog() -> str:
+    """The epilog of ``dccss run --help``: the case file's keys, the exit codes and DCCSS_BACKEND."""
+    return "\n".join([
+        "case file (YAML; lengths in m, angles in degrees, times in s; schema dccss/schemas/case.schema.yaml):",
+        *_case_keys(), "", "output (-o), by its suffix:", *(_wrap(k, v) for k, v in OUTPUTS.items()), "",
+        "exit codes:", *(_wrap(str(k), v) for k, v in EXIT_CODES.items()), "",
+        textwrap.fill(f"environment: {backend.ENV}, which implementation runs the planar models (the spatial ones, "
+                      "for two-component motion, always run compiled):", 100),
+        *(_wrap(f"{backend.ENV}={k}", BACKEND_CHOICES[k], indent=23) for k in backend.BACKENDS),
+    ])
+
+
+def _output_error(output) -> str | None:
+    """Why ``dccss run`` cannot write ``output`` (its suffix is not one of OUTPUTS), or None."""
+    suffix = Path(output).suffix.lower()
+    if suffix in OUTPUTS:
+        return None
+    what = f"unknown output suffix {suffix!r}" if suffix else "no suffix"
+    allowed = ", ".join(f"{k} ({v.split(' (')[0]})" for k, v in OUTPUTS.items())
+    return f"-o {output}: {what}; allowed: {allowed}"
+
+
+def file_kind(mapping) -> str:
+    """'case' or 'study': the kind of file whose keys ``mapping`` has. A key only a study file has (study,
+    models, sweep, ...) makes a study file, else a key a case file has (a misspelt key aside) a case
+    file; a CaseError says why it is neither (no key of either, or keys only a case file has beside
+    keys only a study file has)."""
+    if not isinstance(mapping, dict):
+        raise CaseError(f"neither a case file nor a study file: expected a mapping of keys, got "
+                        f"{type(mapping).__name__} {mapping!r}")
+    case, study = set(schema("case")["properties"]), set(schema("study")["properties"])
+    own_case, own_study = sorted(set(mapping) & (case - study)), sorted(set(mapping) & (study - case))
+    if own_case and own_study:
+        raise CaseError(f"neither a case file nor a study file: it has keys of both, {own_case} of a case file "
+                        f"and {own_study} of a study file")
+    if own_study:
+        return "study"
+    if set(mapping) & case:
+        return "case"
+    raise CaseError(f"neither a case file nor a study file: none of its keys {sorted(map(str, mapping))} is one "
+                    f"of either; a case file has the keys {schema('case')['required']}, a study file "
+                    f"{schema('study')['required']}")
+
+
+def _read(path):
+    """The mapping of a YAML file (a CaseError if it is missing or not YAML)."""
+    import yaml
+
+    path = Path(path)
+    if not path.is_file():
+        raise CaseError(f"file {str(path)!r} does not exist")
+    try:
+        return yaml.safe_load(path.read_text())
+    except yaml.YAMLError as err:
+        raise CaseError(f"file {str(path)!r} is not valid YAML: {err}") from None
+
+
+def _validated(kind, mapping, base) -> str:
+    """The summary of a case or study file's mapping (files relative to ``base``), checked."""
+    if kind == "case":
+        return _case_summary(case_from(mapping, base), mapping)
+    from .studies import Study
+
+    return _study_summary(Study.from_config(mapping, base))
+
+
+def _case_summary(case, mapping) -> str:
+    """One line on a valid case: model, device, ground motion, time span and steps."""
+    proto = mapping["prototype"] if isinstance(mapping["prototype"], str) else "a device of its own"
+    excitation, times = case.excitation, step_times(case.excitation, case.dt)
+    two = " (two components)" if excitation.components == 2 else ""
+    structure = f", a structure (friction {case.structure.friction:g})" if case.structure is not None else ""
+    return (f"model {case.model}, prototype {proto}, {mapping['excitation']['kind']} excitation{two}{structure}, "
+            f"t = {times[0]:g} .. {times[-1]:g} s by dt = {case.dt:g} s: {_steps(times.size)}")
+
+
+def _study_summary(study) -> str:
+    """One line on a valid study: its cases and axes, models, chunks and histories."""
+    grid, models = study.grid, study.models
+    return (f"study {study.name}: {grid.n_cases} case{'' if grid.n_cases == 1 else 's'} "
+            f"({' x '.join(f'{name} {len(values)}' for name, values in study.axes.items())}) under "
+            f"{len(models)} model{'' if len(models) == 1 else 's'} ({', '.join(models)}), {grid.n_chunks} "
+            f"chunk{'' if grid.n_chunks == 1 else 's'} per model, {len(study.histories)} "
+            f"histor{'y' if len(study.histories) == 1 else 'ies'}")
+
+
+def _check(args) -> int:
+    """``dccss check FILE``: 0 and a summary if FILE is a valid case or study file, 2 and every error if not."""
+    try:
+        mapping = _read(args.file)
+        kind = file_kind(mapping)
+    except CaseError as err:
+        print(f"dccss: {args.file}: {err}", file=sys.stderr)
+        return 2
+    try:
+        summary = _validated(kind, mapping, Path(args.file).parent)
+    except CaseError as err:
+        print(f"dccss: {args.file}: not a valid {kind} file: {err}", file=sys.stderr)
+        return 2
+    print(f"{args.file}: a valid {kind} file ({summary})")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="dccss", description="Kinematics of DCCSS isolators.")
     parser.add_argument("--version", action="version", version=f"dccss {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="run one case file and write its netCDF dataset")
+    run = sub.add_parser("run", help="run one case file and write its dataset (netCDF) or history (CSV)",
+                         description="Run one case file: its history, written as a netCDF dataset or a CSV table.",
+                         epilog=run_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     run.add_argument("case", help="YAML case file")
-    run.add_argument("-o", "--output", required=True, help="netCDF file to write")
+    run.add_argument("-o", "--output", required=True,
+                     help="file to write: OUT.nc (the netCDF dataset) or OUT.csv (a table of the history)")
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success (warnings still)")
+    check = sub.add_parser("check", help="check a case file or a study file without running it",
+                           description="Check a case file or a study file (told apart by their keys) without "
+                                       "running anything: exit code 0 and a one-line summary if it is valid, 2 and "
+                                       "every error otherwise.")
+    check.add_argument("file", help="YAML case file or study file")
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] != ["run"]:  # `dccss run` draws nothing: it does not import the drawing code (matplotlib)
+    if argv[:1] not in (["run"], ["check"]):  # these draw nothing: they do not import the drawing code (matplotlib)
         from . import animation, plan
 
         animation.add_parser(sub)
@@ -142,8 +302,14 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if hasattr(args, "handler"):
         return args.handler(args)
+    if args.command == "check":
+        return _check(args)
     warnings.formatwarning = _warn_line
     start = time.perf_counter()
+    problem = _output_error(args.output)
+    if problem is not None:
+        print(f"dccss: error: {problem}", file=sys.stderr)
+        return 2
     try:
         backend.check()
     except (ValueError, backend.BackendError) as err:
@@ -161,7 +327,7 @@ def main(argv=None) -> int:
     finally:
         if progress is not None:
             progress.close()
-    write_netcdf(ds, args.output)
+    (write_csv if Path(args.output).suffix.lower() == ".csv" else write_netcdf)(ds, args.output)
     for line in warnings_of(ds):
         print(f"dccss: warning: {line}", file=sys.stderr)
     if not args.quiet:

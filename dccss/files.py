@@ -6,6 +6,8 @@ that was killed is removed by the next write of the same target.
 
 from __future__ import annotations
 
+import csv
+import io
 import os
 import secrets
 from pathlib import Path
@@ -31,6 +33,26 @@ def write_netcdf(ds, path) -> None:
     (CF 2.5.1)."""
     encoding = {name: {"_FillValue": None} for name in ds.coords}
     write_atomic(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+
+def write_csv(ds, path, dim="t") -> None:
+    """Write the history of a dataset atomically as a CSV table, one row per value of ``dim``.
+
+    The columns are ``dim`` and every data variable along it alone, each headed ``name [units]``
+    (its ``units`` attribute; ``name`` without one); above the header, the dataset's attributes as
+    comment lines ``# key: value``, so that the file describes itself (pandas reads the table with
+    ``read_csv(path, comment="#")``). Numbers are written in full (Python's shortest round-trip
+    form; ``nan`` where a value is missing).
+    """
+    names = [dim] + [name for name in ds.data_vars if ds[name].dims == (dim,)]
+    out = io.StringIO()
+    for key, value in ds.attrs.items():
+        value = value.tolist() if hasattr(value, "tolist") else value
+        out.write(f"# {key}: {' '.join(str(value).splitlines())}\n")
+    rows = csv.writer(out, lineterminator="\n")
+    rows.writerow([f"{name} [{ds[name].attrs['units']}]" if "units" in ds[name].attrs else name for name in names])
+    rows.writerows(zip(*(ds[name].values.tolist() for name in names)))
+    write_atomic(path, lambda tmp: Path(tmp).write_text(out.getvalue(), encoding="utf-8"))
 
 
 def write_text(text, path) -> None:

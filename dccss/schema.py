@@ -51,7 +51,8 @@ class SchemaError:
 def errors(name, instance) -> list[SchemaError]:
     """The errors of ``instance`` against schema ``name``, one per key (a mapping's missing keys, and
     its unknown keys, in one error each), in the order of the file."""
-    found = sorted(Draft202012Validator(schema(name), registry=REGISTRY).iter_errors(instance), key=lambda e: _order(e.absolute_path))
+    found = sorted(Draft202012Validator(schema(name), registry=REGISTRY).iter_errors(instance),
+                   key=lambda e: _order(e.absolute_path))
     out, seen = [], set()
     for err in found:
         path = tuple(err.absolute_path)

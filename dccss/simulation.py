@@ -49,6 +49,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         motion (``Xg``) beside the stroke, its velocity, the force ratio F/W, the friction state z
         and whether the structure sticks (``results.structure_variables``).
 
+    Notes
+    -----
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
@@ -86,15 +88,51 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     return ds
 
 
-def breakaway(geometry, theta2_0, dXg, *, normals="signed",
+def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="signed",
               options: NewtonOptions = NewtonOptions(), attrs: dict | None = None) -> xr.Dataset:
-    """Fig. 7: one compliant step of size dXg (m) from the compatible configuration at each
-    theta^2(t_0) (rad, 1-D array); interpenetration I_A..I_D after the step, |C_q| and the
-    configurations before and after. A scalar dXg gives dimension ``theta2_0``; a 1-D array of
-    step sizes adds a leading dimension ``dXg`` (all solved as one batch)."""
-    theta2_0 = np.atleast_1d(np.asarray(theta2_0, dtype=float))
-    if theta2_0.ndim != 1 or theta2_0.size == 0:
-        raise ValueError("theta2_0 must be a non-empty 1-D grid of initial pad rotations")
+    """Fig. 7: one compliant step of size dXg from the compatible configuration at each initial pad
+    rotation θ²(t₀): the interpenetration I_A..I_D after the step, |C_q| and the configurations
+    before and after.
+
+    The angles follow the library's rule: arguments in radians (as ``simulate``'s ``theta2_0`` and a
+    ``Geometry``'s angles), datasets in degrees (as every angle a dataset holds, with ``units``
+    "degree"); ``theta2_0_deg`` takes the grid in the dataset's unit instead.
+
+    Parameters
+    ----------
+    geometry : Geometry (scalar fields).
+    theta2_0 : the initial pad rotations θ²(t₀) in radians: a number or a non-empty 1-D array.
+    dXg : the ground step (m): a number, or a 1-D array of steps (all solved as one batch).
+    theta2_0_deg : the initial pad rotations in degrees, instead of ``theta2_0`` (give one of the
+        two); the dataset's coordinate then holds these very values.
+    normals : 'signed' (consistent) or 'unsigned' (the authors' |alpha|).
+    options : Newton-Raphson tolerance and iteration cap.
+    attrs : extra global attributes (e.g. a case id).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimension ``theta2_0``, the coordinate in degrees (``units`` "degree") whichever argument
+        gave it; an array dXg adds a leading dimension ``dXg`` (m), a scalar one is the attribute
+        ``dXg_m``.
+
+    Raises
+    ------
+    TypeError
+        Both or neither of ``theta2_0`` and ``theta2_0_deg``, or no ``dXg``.
+    ValueError
+        An empty or 2-D grid, a non-finite or 2-D ``dXg``.
+    """
+    if (theta2_0 is None) == (theta2_0_deg is None):
+        raise TypeError("breakaway() takes the initial pad rotations once: theta2_0 (radians) or theta2_0_deg "
+                        f"(degrees), got {'both' if theta2_0 is not None else 'neither'}")
+    if dXg is None:
+        raise TypeError("breakaway() needs the ground step dXg (m)")
+    key = "theta2_0" if theta2_0_deg is None else "theta2_0_deg"
+    grid = np.atleast_1d(np.asarray(theta2_0 if theta2_0_deg is None else theta2_0_deg, dtype=float))
+    if grid.ndim != 1 or grid.size == 0:
+        raise ValueError(f"{key} must be a non-empty 1-D grid of initial pad rotations")
+    theta2_0 = grid if theta2_0_deg is None else np.radians(grid)
     steps = np.asarray(dXg, dtype=float)
     if steps.ndim > 1 or steps.size == 0 or not np.all(np.isfinite(steps)):
         raise ValueError(f"dXg must be a finite number or a non-empty 1-D array, got {dXg!r}")
@@ -103,6 +141,8 @@ def breakaway(geometry, theta2_0, dXg, *, normals="signed",
     Xg[1] = sizes[:, None]
     history = models.run("compliant", geometry, Xg, theta2_0, normals=normals, options=options)
     ds = breakaway_dataset(history, geometry, theta2_0, sizes, normals, attrs)
+    if theta2_0_deg is not None:  # the grid as given, not its round trip through radians
+        ds = ds.assign_coords(theta2_0=("theta2_0", grid, ds["theta2_0"].attrs))
     if steps.ndim == 0:
         ds = ds.isel(dXg=0)
         ds.attrs["dXg_m"] = float(steps)

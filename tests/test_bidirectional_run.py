@@ -124,7 +124,7 @@ def test_dccss_run_on_a_record_pair(tmp_path, capsys):
     out = tmp_path / "pair.nc"
     assert cli.main(["run", str(case), "-o", str(out)]) == 0
     line = capsys.readouterr().out
-    assert "bidirectional, 2000 steps: max tilt" in line
+    assert "bidirectional, 2000 steps (2001 states): max tilt" in line
     ds = xr.load_dataset(out)
     assert ds.sizes["t"] == 2001 and ds.attrs["motion"] == "bidirectional"
     assert ds.attrs["record_x_source"].endswith("synthetic.AT2")

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..case import excitation_from, geometry_from, newton_from, structure_from
-from ..checks import CaseError, check_keys, choice, number
+from ..checks import CaseError, Problems, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
@@ -153,75 +153,115 @@ class Study:
 
     @classmethod
     def from_config(cls, config: dict, base: Path = Path(".")) -> Study:
-        """Validate a study mapping (keys, types, every sweep point's geometry); errors name the key."""
-        check_keys(config, "study file", REQUIRED, KEYS - set(REQUIRED))
-        name, description = _meta(config["study"])
-        known = _devices(config.get("prototypes", {}))
-        proto = config["prototype"]
-        if isinstance(proto, str):
-            if proto not in known:
-                raise StudyError(f"prototype: unknown prototype {proto!r}; known: {sorted(known)}")
-            proto = known[proto]
-        geometry = geometry_from(proto)  # validates keys and values of the base device
+        """Validate a study mapping (keys, types, every sweep point's geometry); errors name the key.
+
+        Every mistake is reported at once (one StudyError listing them, in the order of the file):
+        each key is checked on its own, a key that depends on others (the excitation on the device and
+        the sweep, dt on the excitation) once they have passed, the sweep points' devices once all
+        keys have, and the schema adds its errors about the keys whose checks passed."""
+        if not isinstance(config, dict):
+            check_keys(config, "study file", REQUIRED, KEYS - set(REQUIRED))  # raises: not a mapping
+        problems = Problems(config, StudyError)
+        problems.check("", check_keys, config, "study file", REQUIRED, KEYS - set(REQUIRED))
+        meta = problems.check("study", _meta, config["study"]) if "study" in config else None
+        known = problems.check("prototypes", _devices, config.get("prototypes", {}))
+        proto = geometry = None
+        if known is not None and "prototype" in config:
+            proto = problems.check("prototype", _device, config["prototype"], known)
+            geometry = problems.check("prototype", geometry_from, proto) if proto is not None else None
         symmetric = config.get("symmetric", False)
         if not isinstance(symmetric, bool):
-            raise StudyError(f"symmetric: expected true or false, got {symmetric!r}")
-        models = config["models"]
-        if not isinstance(models, list) or not models:
-            raise StudyError(f"models: expected a non-empty list of {list(MODELS)}, got {models!r}")
-        for i, m in enumerate(models):
-            choice(m, f"models[{i}]", MODELS)
-        axes = _axes(config["sweep"], known, symmetric)
-        if "scale" in axes and isinstance(config["excitation"].get("scale"), dict):
-            raise StudyError("sweep.scale: the records are scaled to a spectral acceleration (excitation.scale); a "
-                             "scale axis would multiply it again: give the target you want, or one study per target")
-        records = {}
-        if "record" in config["sweep"]:
-            if "file" in config["excitation"]:
-                raise StudyError("excitation.file: the records are the sweep's (sweep.record); give the excitation's "
-                                 "kind and processing (scale, window, baseline, units) without a file")
-            entries = record_entries(config["sweep"]["record"], base)
-            axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
-            records = {name: _swept_excitation(excitation_from({**config["excitation"], "file": entry}, base, geometry,
-                                                               f"sweep.record[{name}]"), axes, config["excitation"])
-                       for name, entry in entries.items()}
-            kinds = {e.components for e in records.values()}
-            if len(kinds) > 1:
-                raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
-            excitation = next(iter(records.values()))
+            problems.add("symmetric", f"symmetric: expected true or false, got {symmetric!r}")
+        models = problems.check("models", _models, config["models"]) if "models" in config else None
+        axes = (problems.check("sweep", _axes, config["sweep"], known, symmetric is True)
+                if known is not None and "sweep" in config else None)
+        excitation, records = None, {}
+        if geometry is not None and axes is not None and "excitation" in config:
+            found = problems.check("excitation", _excitations, config, axes, base, geometry)
+            if found is not None:
+                excitation, records, axes = found
+        if excitation is not None and excitation.components == 2 and config.get("normals", "signed") != "signed":
+            problems.add("normals", "normals: bidirectional ground motion runs the spatial models, which use signed "
+                                    f"normals only; got {config.get('normals')!r}")
+        if axes is not None:
+            dt = problems.check("dt", _steps, config, axes, excitation)
         else:
-            excitation = _swept_excitation(excitation_from(config["excitation"], base, geometry), axes,
-                                           config["excitation"])
-        if excitation.components == 2 and config.get("normals", "signed") != "signed":
-            raise StudyError("normals: bidirectional ground motion runs the spatial models, which use signed normals "
-                             f"only; got {config.get('normals')!r}")
-        dt = _steps(config, axes, excitation)
-        structure = _structure(config.get("structure"), axes)
-        options = newton_from(config.get("newton"))
-        policy = choice(config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
-        study = cls(name=name, description=description, prototype=dict(proto),
+            dt = problems.check("dt", number, config["dt"], "dt", positive=True) if "dt" in config else None
+        structure = problems.check("structure", _structure, config.get("structure"), axes) if axes is not None else None
+        options = problems.check("newton", newton_from, config.get("newton"))
+        policy = problems.check("on_failure", choice, config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
+        theta2_0 = problems.check("theta2_0", number, config.get("theta2_0", 0.0), "theta2_0")
+        normals = problems.check("normals", choice, config.get("normals", "signed"), "normals", NORMALS)
+        chunk_size = problems.check("chunk_size", _chunk_size, config.get("chunk_size", "auto"), axes or {})
+        capacity = problems.check("capacity", choice, config.get("capacity", "continue"), "capacity",
+                                  CAPACITY_POLICIES)
+        # the points below are on the axes a record axis completes: checked once the excitation has passed
+        marks = problems.check("marks", _marks, config.get("marks", {}), axes) if excitation is not None else None
+        histories, animate = config.get("histories", []), None
+        if histories != "all" and excitation is not None and not problems.failed("dt"):
+            histories = problems.check("histories", _histories, histories, axes, dt)
+            if histories is not None:
+                animate = problems.check("animate", _animations, config.get("animate", []), histories, axes)
+        problems.raise_if_any(schema_errors("study", config))
+        study = cls(name=meta[0], description=meta[1], prototype=dict(proto),
                     prototypes={k: dict(v) for k, v in known.items()}, symmetric=symmetric, excitation=excitation,
-                    excitation_spec=dict(config["excitation"]),
-                    theta2_0=number(config.get("theta2_0", 0.0), "theta2_0"), dt=dt, models=list(models),
-                    normals=choice(config.get("normals", "signed"), "normals", NORMALS), axes=axes,
-                    chunk_size=_chunk_size(config.get("chunk_size", "auto"), axes),
-                    capacity=choice(config.get("capacity", "continue"), "capacity", CAPACITY_POLICIES),
+                    excitation_spec=dict(config["excitation"]), theta2_0=theta2_0, dt=dt, models=list(models),
+                    normals=normals, axes=axes, chunk_size=chunk_size, capacity=capacity,
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
                     base=base, structure=structure, records=records,
                     record_entries=record_entries(config["sweep"]["record"], base) if records else {})
-        study.marks = _marks(config.get("marks", {}), axes)
+        study.marks = marks
         _check_grid(study.grid)
         _check_frictions(study.grid)
-        histories = config.get("histories", [])
         if histories == "all":
-            histories = [study.grid.point(i) for i in range(study.grid.n_cases)]
-        study.histories = _histories(histories, axes, dt)
-        study.animate = _animations(config.get("animate", []), study.histories, axes)
-        # the checks above word each error best; the schema, which the workflow applies too, has the last word
-        problems = schema_errors("study", config)
-        if problems:
-            raise StudyError("; ".join(p.message for p in problems))
+            histories = _histories([study.grid.point(i) for i in range(study.grid.n_cases)], axes, dt)
+            animate = _animations(config.get("animate", []), histories, axes)
+        study.histories, study.animate = histories, animate
         return study
+
+
+def _device(proto, known):
+    """The base device's 13 parameters: a name among ``known`` or the parameters themselves."""
+    if isinstance(proto, str):
+        if proto not in known:
+            raise StudyError(f"prototype: unknown prototype {proto!r}; known: {sorted(known)}")
+        return known[proto]
+    return proto
+
+
+def _models(models):
+    """The study's models, each one of the registry's."""
+    if not isinstance(models, list) or not models:
+        raise StudyError(f"models: expected a non-empty list of {list(MODELS)}, got {models!r}")
+    problems = Problems(dict.fromkeys(range(len(models))), StudyError)
+    for i, m in enumerate(models):
+        problems.check(i, choice, m, f"models[{i}]", MODELS)
+    problems.raise_if_any()
+    return models
+
+
+def _excitations(config, axes, base, geometry):
+    """(the excitation a sweep evaluates, {record name: its excitation} of a record axis, the axes with
+    the record axis first)."""
+    spec = config["excitation"]
+    if not isinstance(spec, dict):
+        raise StudyError(f"excitation: expected a mapping, got {type(spec).__name__} {spec!r}")
+    if "scale" in axes and isinstance(spec.get("scale"), dict):
+        raise StudyError("sweep.scale: the records are scaled to a spectral acceleration (excitation.scale); a "
+                         "scale axis would multiply it again: give the target you want, or one study per target")
+    if "record" not in config["sweep"]:
+        return _swept_excitation(excitation_from(spec, base, geometry), axes, spec), {}, axes
+    if "file" in spec:
+        raise StudyError("excitation.file: the records are the sweep's (sweep.record); give the excitation's "
+                         "kind and processing (scale, window, baseline, units) without a file")
+    entries = record_entries(config["sweep"]["record"], base)
+    axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
+    records = {name: _swept_excitation(excitation_from({**spec, "file": entry}, base, geometry,
+                                                       f"sweep.record[{name}]"), axes, spec)
+               for name, entry in entries.items()}
+    if len({e.components for e in records.values()}) > 1:
+        raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
+    return next(iter(records.values())), records, axes
 
 
 def _meta(meta):
@@ -236,40 +276,48 @@ def _devices(own) -> dict:
     """Table 1 and the study's own devices, each validated."""
     if not isinstance(own, dict):
         raise StudyError(f"prototypes: expected a mapping of names to devices, got {own!r}")
+    problems = Problems(own, StudyError)
     for label, params in own.items():
-        geometry_from(params, f"prototypes.{label}")
+        problems.check(label, geometry_from, params, f"prototypes.{label}")
+    problems.raise_if_any()
     return {**TABLE1, **own}
 
 
 def _axes(sweep, known, symmetric) -> dict:
     if not isinstance(sweep, dict) or not sweep:
         raise StudyError("sweep: expected a mapping of at least one axis name to its values")
-    axes = {}
+    problems, axes = Problems(sweep, StudyError), {}
     for key, spec in sweep.items():
-        if key not in AXES:
-            raise StudyError(f"sweep: unknown axis {key!r}; allowed: {list(AXES)}")
-        if symmetric and key in PLATE3_FOLLOWS:
-            raise StudyError(f"sweep.{key}: with symmetric: true, {key} follows {PLATE3_FOLLOWS[key]}; "
-                             f"sweep {PLATE3_FOLLOWS[key]} instead")
-        if key == "record":
-            continue  # read with the excitation (``record_entries``)
-        if key == "component":
-            if not isinstance(spec, list) or not spec:
-                raise StudyError(f"sweep.component: expected a non-empty list of {list(COMPONENTS)}, got {spec!r}")
-            for i, label in enumerate(spec):
-                choice(label, f"sweep.component[{i}]", COMPONENTS)
-            axes[key] = np.array(spec, dtype=str)
-            continue
-        if key != "prototype":
-            axes[key] = axis_values(spec, f"sweep.{key}")
-            continue
-        if not isinstance(spec, list) or not spec:
-            raise StudyError(f"sweep.prototype: expected a non-empty list of device names, got {spec!r}")
-        for i, label in enumerate(spec):
-            if label not in known:
-                raise StudyError(f"sweep.prototype[{i}]: unknown prototype {label!r}; known: {sorted(known)}")
-        axes[key] = np.array(spec, dtype=str)
+        values = problems.check(key, _axis, key, spec, known, symmetric)
+        if values is not None:
+            axes[key] = values
+    problems.raise_if_any()
     return axes
+
+
+def _axis(key, spec, known, symmetric):
+    """The values of sweep axis ``key`` (a record axis: None, its entries are read with the excitation)."""
+    if key not in AXES:
+        raise StudyError(f"sweep: unknown axis {key!r}; allowed: {list(AXES)}")
+    if symmetric and key in PLATE3_FOLLOWS:
+        raise StudyError(f"sweep.{key}: with symmetric: true, {key} follows {PLATE3_FOLLOWS[key]}; "
+                         f"sweep {PLATE3_FOLLOWS[key]} instead")
+    if key == "record":
+        return None  # read with the excitation (``record_entries``)
+    if key == "component":
+        if not isinstance(spec, list) or not spec:
+            raise StudyError(f"sweep.component: expected a non-empty list of {list(COMPONENTS)}, got {spec!r}")
+        for i, label in enumerate(spec):
+            choice(label, f"sweep.component[{i}]", COMPONENTS)
+        return np.array(spec, dtype=str)
+    if key != "prototype":
+        return axis_values(spec, f"sweep.{key}")
+    if not isinstance(spec, list) or not spec:
+        raise StudyError(f"sweep.prototype: expected a non-empty list of device names, got {spec!r}")
+    for i, label in enumerate(spec):
+        if label not in known:
+            raise StudyError(f"sweep.prototype[{i}]: unknown prototype {label!r}; known: {sorted(known)}")
+    return np.array(spec, dtype=str)
 
 
 def _swept_excitation(excitation, axes, spec):
@@ -296,12 +344,17 @@ def _swept_excitation(excitation, axes, spec):
 
 
 def _steps(config, axes, excitation) -> float | None:
-    """The study's dt (None if only the sweep gives it); every step size checked."""
+    """The study's dt (None if only the sweep gives it); every step size checked (against the
+    excitation's duration when the excitation is not None)."""
     if "dt" not in config and "dt" not in axes:
         raise StudyError("dt: missing: give the time step (s), or sweep it (sweep.dt)")
+
+    def step(value, key):
+        return number(value, key, positive=True) if excitation is None else check_step(value, excitation, key)
+
     for i, value in enumerate(axes.get("dt", [])):
-        check_step(float(value), excitation, f"sweep.dt[{i}]")
-    return check_step(config["dt"], excitation, "dt") if "dt" in config else None
+        step(float(value), f"sweep.dt[{i}]")
+    return step(config["dt"], "dt") if "dt" in config else None
 
 
 def _structure(value, axes) -> Structure | None:
