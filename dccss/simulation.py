@@ -20,34 +20,51 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
 
     Parameters
     ----------
-    geometry : Geometry (scalar fields).
-    excitation : ``excitation.Sine``, ``excitation.Table`` or ``records.Record``.
-    model : 'compliant' or 'stick_slip'.
-    dt : time step (s); the steps are t_n = t_start + n dt up to the excitation's end.
-    theta2_0 : pad rotation at t_0 (rad); the start is the compatible configuration there.
-    normals : 'signed' (consistent) or 'unsigned' (the authors' |alpha|).
-    options : Newton-Raphson tolerance and iteration cap.
-    capacity : what to do when the pad reaches a retaining ring: 'continue' (flag it), 'stop'
-        (the dataset ends at that step) or 'error' (raise CapacityError). In every case the
-        attributes ``capacity_exceeded_at_s``, ``capacity_exceeded_plate`` (RB1 or RB3, the
-        plate whose ring is reached first) and ``capacity_exceeded_by_m`` (how far the pad
-        passes a ring at most) say when, where and by how much, and ``capacity_exceeded_displacement_m``
-        how far RB1 had moved from its start then (the ground's displacement, or the stroke);
-        ``stopped_at_s`` says where 'stop' ended the history. A step with no compatible configuration
-        (RB1 displaced from RB3 by L or more) is a failure under every capacity policy.
-    on_failure : 'error' (a ConvergenceError) or 'mark': the dataset holds the history up to
-        the last converged step, with the attributes ``failed`` = 1, ``failure_time_s`` (the
-        step that failed) and ``failure_message``.
-    attrs : extra global attributes (e.g. a case id).
-    progress : optional callable ``progress(n, N)`` called after each step n of N (once, when the
-        history is done, where compiled kernels run it: long planar runs and every spatial run).
-    structure : a ``mechanics.structure.Structure`` (friction μ, damping ζ) on the device, or None.
-        None: the ground displacement is imposed on RB1 relative to RB3, the superstructure held
-        still in space. A structure: the excitation's ground acceleration drives the superstructure
-        (``mechanics.structure``), and its stroke u (the superstructure relative to the ground) is
-        what the device undergoes: RB1 moves by -u relative to RB3. The dataset keeps the ground
-        motion (``Xg``) beside the stroke, its velocity, the force ratio F/W, the friction state z
-        and whether the structure sticks (``results.structure_variables``).
+    geometry : Geometry
+        The device (scalar fields).
+    excitation : Sine, Table, Record, RecordPair, Oriented, Scaled or PlaneTable
+        The ground motion: one component runs the planar models, two the spatial ones.
+    model : str
+        A model of the registry: 'compliant' or 'stick_slip'.
+    dt : float
+        Time step (s); the steps are t_n = t_start + n dt up to the excitation's end.
+    theta2_0 : float
+        Pad rotation at t_0 (rad); the start is the compatible configuration there.
+    normals : str
+        'signed' (consistent) or 'unsigned' (the authors' |alpha|).
+    options : NewtonOptions
+        Newton-Raphson tolerance and iteration cap.
+    capacity : str
+        What to do when the pad reaches a retaining ring: 'continue' (flag it), 'stop' (the dataset
+        ends at that step) or 'error' (raise CapacityError). In every case the attributes
+        ``capacity_exceeded_at_s``, ``capacity_exceeded_plate`` (RB1 or RB3, the plate whose ring is
+        reached first) and ``capacity_exceeded_by_m`` (how far the pad passes a ring at most) say when,
+        where and by how much, and ``capacity_exceeded_displacement_m`` how far RB1 had moved from its
+        start then (the ground's displacement, or the stroke); ``stopped_at_s`` says where 'stop' ended
+        the history. A step with no compatible configuration (RB1 displaced from RB3 by L or more) is a
+        failure under every capacity policy.
+    on_failure : str
+        'error' (a ConvergenceError) or 'mark': the dataset holds the history up to the last converged
+        step, with the attributes ``failed`` = 1, ``failure_time_s`` (the step that failed) and
+        ``failure_message``.
+    attrs : dict, optional
+        Extra global attributes (e.g. a case id).
+    progress : callable, optional
+        ``progress(n, N)``, called after each step n of N (once, when the history is done, where
+        compiled kernels run it: long planar runs and every spatial run).
+    structure : Structure, optional
+        A superstructure (friction μ, damping ζ) on the device. None: the ground displacement is
+        imposed on RB1 relative to RB3, the superstructure held still in space. A structure: the
+        excitation's ground acceleration drives the superstructure (``mechanics.structure``), and its
+        stroke u (the superstructure relative to the ground) is what the device undergoes: RB1 moves
+        by -u relative to RB3. The dataset keeps the ground motion (``Xg``) beside the stroke, its
+        velocity, the force ratio F/W, the friction state z and whether the structure sticks
+        (``results.structure_variables``).
+
+    Returns
+    -------
+    xarray.Dataset
+        The history (CF-1.11; variables and attributes: the documentation's Datasets reference).
 
     Notes
     -----

@@ -44,13 +44,20 @@ class Geometry:
 
     Parameters
     ----------
-    R1, R3 : radii of the concave surfaces of RB1 and RB3 (m).
-    alpha1, alpha3 : half opening angles of the concave surfaces (rad).
-    h2 : height of the straight cylinder of the pad RB2 (m).
-    alpha21, alpha23 : half opening angles of the pad's convex caps (rad).
-    hr1, hr3 : heights of the retaining rings (m).
-    hmin1, hmin3 : plate thickness under the most depressed point (m).
-    tr1, tr3 : thicknesses of the retaining rings (m).
+    R1, R3 : float
+        Radii of the concave surfaces of RB1 and RB3 (m).
+    alpha1, alpha3 : float
+        Half opening angles of the concave surfaces (rad).
+    h2 : float
+        Height of the straight cylinder of the pad RB2 (m).
+    alpha21, alpha23 : float
+        Half opening angles of the pad's convex caps (rad).
+    hr1, hr3 : float
+        Heights of the retaining rings (m).
+    hmin1, hmin3 : float
+        Plate thickness under the most depressed point (m).
+    tr1, tr3 : float
+        Thicknesses of the retaining rings (m).
 
     Raises
     ------
