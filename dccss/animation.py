@@ -5,7 +5,8 @@ shown step, the plates RB1 and RB3 with their retaining rings and the pad RB2, t
 fixed limits in the ground-fixed frame (RB1 moves with X_g), and
 
 * four zoom windows on the pad corners A^2, B^2, C^2, D^2 at true scale, each with the
-  interpenetration I (µm to mm) as a red radial segment and its value; on the whole device
+  interpenetration I (µm to mm) as a red radial segment and its value (in nm, µm or mm; "0 (contact)"
+  within the solver's tolerance, where what is left is round-off); on the whole device
   the positive interpenetrations are red spikes into the plates, magnified by a labelled
   exaggeration factor;
 * time traces of X_g, θ^2 and the rise of RB3 with a cursor at the shown step;
@@ -39,6 +40,7 @@ from .files import write_atomic
 from .mechanics.constraints import Q_NAMES
 from .mechanics.kinematics import CORNERS, interpenetration
 from .mechanics.models import REGISTRY
+from .mechanics.newton import NewtonOptions
 from .results import MODEL_TITLES, geometry_from_attrs, has_structure
 from .viewer import DPI, FIGSIZE, AnimationError, is_real, open_result, run_command, run_notes  # noqa: F401
 
@@ -54,6 +56,7 @@ SPIKE_LENGTH = 0.03  # automatic exaggeration: the largest interpenetration draw
 _DEVICE = (0.225, 0.405, 0.55, 0.455)
 _INSETS = {"C": (0.012, 0.655), "D": (0.853, 0.655), "A": (0.012, 0.405), "B": (0.853, 0.405)}
 _INSET_SIZE = (0.135, 0.205)
+_INSET_FIELD = {"C": 0.36, "D": 0.2, "A": 0.36, "B": 0.2}  # where a window's value starts (axes fraction)
 _LABEL_STRIP = 13.0 / (72 * FIGSIZE[1] * _INSET_SIZE[1])  # a zoom window's label strip, 13 pt (axes fraction)
 # the status lines above the device: (label, x of the value) at the end of the step and of sticking
 _STATUS = ({"t": ("t =", 0.25), "step": ("step", 0.345), "Xg": ("$X_g$ =", 0.475),
@@ -184,6 +187,19 @@ def _spike_factor(I, exaggeration):
     return _nice_factor(SPIKE_LENGTH / peak) if peak > 0 else None
 
 
+def interpenetration_text(value, tol):
+    """An interpenetration I (m) as a zoom window prints it: "0 (contact)" when |I| is within the
+    solver's tolerance ``tol`` (the corner is on its surface: what is left is round-off), else three
+    digits in nm, µm or mm, with "(gap)" when I < 0."""
+    if not math.isfinite(value):
+        return "\u2013"
+    if abs(value) <= tol:
+        return "0 (contact)"
+    factor, unit = next((f, u) for f, u, least in ((1e3, "mm", 1e-3), (1e6, "µm", 1e-6), (1e9, "nm", 0.0))
+                        if abs(value) >= least)
+    return f"{factor * value:.3g} {unit}" + (" (gap)" if value < 0 else "")
+
+
 def _time_format(ds):
     dt = ds.attrs.get("dt_s")
     if not is_real(dt) or dt <= 0:
@@ -221,6 +237,7 @@ class Scene:
         self.qs = _config(ds, "_stick") if self.stick else None
         self.diag = ds["sticking_diagonal"].values if self.stick and "sticking_diagonal" in ds else None
         self.I = _interpenetration(ds, self.g, self.q)
+        self.tol = float(ds.attrs["newton_tol_m"]) if is_real(ds.attrs.get("newton_tol_m")) else NewtonOptions().tol
         self.tfmt = _time_format(ds)
         frames = np.asarray(frames, dtype=int)
         self.factor = _spike_factor(self.I[frames], exaggeration)
@@ -314,7 +331,7 @@ class Scene:
             factor, unit = length_unit(2 * half)
             ins.text(0.5, _LABEL_STRIP / 2, f"window {_number(factor * 2 * half)} {unit} wide", fontsize=7,
                      transform=ins.transAxes, ha="center", va="center")
-            title = self._add(_field(self.fig, 0.36, 1.04, f"{I_LABEL[c]} =", ins.transAxes, fontsize=8.5))
+            title = self._add(_field(self.fig, _INSET_FIELD[c], 1.04, f"{I_LABEL[c]} =", ins.transAxes, fontsize=8.5))
             self._add(self.ax.indicate_inset_zoom(ins, edgecolor="0.5", alpha=0.6, lw=0.6))
             self.zoom[c] = (ins, bodies, segment, point, title, half)
 
@@ -376,6 +393,8 @@ class Scene:
         return drawn
 
     def _texts(self, name):
+        from .drawing import fit_width
+
         attrs, g = self.ds.attrs, self.g
         head = f"{MODEL_TITLES[attrs['model']]} model"
         if is_real(attrs.get("dt_s")):
@@ -385,7 +404,7 @@ class Scene:
         label = attrs.get("case_id") or name  # the case id says more than the file name
         if label:
             head += f"  —  {label}"
-        self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=11)
+        fit_width(self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=11), self.fig)
         notes = run_notes(attrs)
         if notes:
             self.fig.text(0.5, 0.006, notes, ha="center", va="bottom", fontsize=8, color="tab:red", linespacing=1.1,
@@ -440,8 +459,6 @@ class Scene:
         self.spikes.set_data(xs, ys)
 
     def _zooms(self, n, xy, pts, centres):
-        from .drawing import length_unit
-
         for j, c in enumerate(CORNERS):
             ins, bodies, segment, point, title, half = self.zoom[c]
             for i, patch in bodies.items():
@@ -453,9 +470,8 @@ class Scene:
             ins.set_xlim(p[0] - 100 * half, p[0] + 100 * half)
             ins.set_ylim(p[1] - 100 * half, p[1] + 100 * half)
             value = float(self.I[n, j])
-            factor, unit = length_unit(value)
-            title.set_text(f"{factor * value:.3g} {unit}{' (gap)' if value < 0 else ''}")
-            title.set_color(SPIKE_COLOUR if value > 0 else "0.25")
+            title.set_text(interpenetration_text(value, self.tol))
+            title.set_color(SPIKE_COLOUR if value > self.tol else "0.25")
 
     def _ghost(self, n):
         """Draw the end of sticking of step n; returns (theta2, diagonal) or None (no sticking phase)."""

@@ -49,6 +49,15 @@ def caption_line(fig, caption):
              fontsize=9, style="italic", color="0.25")
 
 
+def fit_width(text, fig, least=6.0):
+    """Shrink the font of a figure-wide line (a heading naming a long case id) until it lies inside the
+    figure, by half points down to ``least``."""
+    renderer = fig.canvas.get_renderer()
+    while text.get_fontsize() > least and text.get_window_extent(renderer).width > 0.98 * fig.bbox.width:
+        text.set_fontsize(text.get_fontsize() - 0.5)
+    return text
+
+
 #: significant digits kept of the axis limits (see ``freeze``)
 LIMIT_DIGITS = 9
 

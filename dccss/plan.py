@@ -18,6 +18,9 @@ from . import drawing
 from .results import geometry_from_attrs, has_structure, imposed, is_bidirectional
 
 MAX_INSTANTS = 4
+#: legends outside the data: beside the axes (right), or above them on the right (the title on the left)
+BESIDE = dict(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+ABOVE = dict(fontsize=8, loc="lower right", bbox_to_anchor=(1.0, 1.0), borderaxespad=0.2)
 
 
 @dataclass
@@ -202,16 +205,16 @@ def figure(ds, at=None, title=None):
     trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
     draw_plan(plan, v, g, steps[-1], ground_label=ground_label(ds))
     plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
-    drawing.legend_on(plan, fontsize=8, loc="best")
+    drawing.legend_on(plan, **BESIDE)
     draw_axis_trace(trace, v)
     trace.set_title("(b) trace of the pad axis", fontsize=9)
-    trace.legend(fontsize=8, loc="best")
+    trace.legend(**BESIDE)
     traces = fig.add_subplot(grid[1, :])
     right = draw_traces(traces, v)
     for n in steps:
         traces.axvline(v.t[n], color="0.5", lw=0.7, ls=":")
-    traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9)
-    drawing.legend_on(traces, right, fontsize=8, loc="upper right")
+    traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9, loc="left")
+    drawing.legend_on(traces, right, **ABOVE, ncols=3)
     shapes = drawing.body_shapes(g)
     for k, n in enumerate(steps):
         ax = fig.add_subplot(grid[2, k])
@@ -226,11 +229,19 @@ def figure(ds, at=None, title=None):
         half = max(1, grid.ncols // 2)
         draw_structure(fig.add_subplot(grid[3, :half]), fig.add_subplot(grid[3, half:]), ds, steps,
                        letters=(chr(100 + len(steps)), chr(101 + len(steps))))
-    motion = "bidirectional" if is_bidirectional(ds) else "unidirectional (x)"
-    drawing.caption_line(fig, title or (f"{ds.attrs.get('title', 'dccss history')}: {motion} ground motion; "
-                                        "sections in the vertical plane of the pad axis, end of sticking in red"))
+    drawing.caption_line(fig, title or caption(ds, v))
     drawing.freeze(fig)
     return fig
+
+
+def caption(ds, v: View) -> str:
+    """The caption line of ``figure``: the history's title, its ground motion (unless the title says it)
+    and what the sections show; the end of sticking only where there is one (not in compliant sliding)."""
+    text = ds.attrs.get("title", "dccss history")
+    if "ground motion" not in text:
+        text += f": {'bidirectional' if is_bidirectional(ds) else 'unidirectional (x)'} ground motion"
+    text += "; sections in the vertical plane of the pad axis"
+    return text + (", end of sticking in red" if v.stick is not None else "")
 
 
 def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
@@ -251,12 +262,12 @@ def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
                       f"ζ = {a['structure_damping']:g}, T = {a['structure_period_s']:.3g} s)", fontsize=9)
     history.set_xlabel("t (s)")
     history.set_ylabel("displacement (cm)")
-    drawing.legend_on(history, fontsize=8, loc="best")
+    drawing.legend_on(history, **BESIDE)
     loop.set_title(f"({letters[1]}) force-displacement loop of the device", fontsize=9)
     loop.set_xlabel("stroke u (cm)")
     loop.set_ylabel("F/W (-)")
     if len(parts) > 1:
-        loop.legend(fontsize=8, loc="best")
+        loop.legend(**BESIDE)
     for ax in (history, loop):
         ax.grid(True, color="0.9", lw=0.6)
         ax.axhline(0, color="0.6", lw=0.6, zorder=1)
@@ -374,7 +385,7 @@ class Scene:
         drawing.legend_on(traces, right, fontsize=7, loc="upper right")
         self.cursor = self._add(traces.axvline(v.t[0], color="crimson", lw=1.0))
         title = ds.attrs.get("title", "dccss history")
-        fig.suptitle(f"{title}{' - ' + name if name else ''}", fontsize=10)
+        drawing.fit_width(fig.suptitle(f"{title}{' - ' + name if name else ''}", fontsize=10), fig)
         self.status = self._add(fig.text(0.5, 0.935, "", ha="center", fontsize=9))
         notes = run_notes(ds.attrs)
         if notes:

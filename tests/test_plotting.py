@@ -14,7 +14,7 @@ import yaml
 from dccss.case import geometry_from
 from dccss.drawing import save
 from dccss.excitation import Sine
-from dccss.paper.figures import DRAW, KINDS, Panel, figure_spec, figure_specs, render
+from dccss.paper.figures import DRAW, KINDS, Panel, figure_spec, figure_specs, render, title_text
 from dccss.simulation import breakaway, simulate
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config/config.yaml").read_text())
@@ -97,7 +97,7 @@ def test_figure(fig_id, datasets, tmp_path):
     assert labels and all(UNIT.search(label) for label in labels), labels
     for unit in REQUIRED_UNITS.get(fig_id, ["(s)"]):
         assert any(label.endswith(unit) for label in labels), (unit, labels)
-    assert fig._suptitle.get_text() == f"Figure {int(fig_id[3:])}. {SPECS[fig_id].title}"
+    assert fig._suptitle.get_text() == f"Figure {int(fig_id[3:])}. {title_text(SPECS[fig_id].title)}"
     assert CAPTION in [text.get_text() for text in fig.texts]
     assert 11 <= fig.get_figwidth() <= 14
 

@@ -48,12 +48,26 @@ from ..mechanics.kinematics import CORNERS
 from ..results import geometry_from_attrs
 from .specs import KINDS, FigureSpec, Panel, Runs, SpecError, figure_spec, figure_specs  # noqa: F401 (the API)
 
+#: the paper's symbols as the titles of the configuration write them (plain text, one line) and as the
+#: axes print them (mathtext)
+TITLE_SYMBOLS = {r"\|C_q\|": r"$|\mathbf{C_q}|$", r"R_y(?:³|\^3)": r"$R_y^3$",
+                 **{rf"\bI_{c}\b": I_LABEL[c] for c in CORNERS}}
+
+
+def title_text(title):
+    r"""A title with the paper's symbols as the axes print them: "|C_q|" -> $|\mathbf{C_q}|$, "R_y³" ->
+    $R_y^3$, "I_A" -> $I_A^1$ (the corners' labels)."""
+    for pattern, symbol in TITLE_SYMBOLS.items():
+        title = re.sub(pattern, lambda _, symbol=symbol: symbol, title)
+    return title
+
 
 def _finish(fig, fig_id, caption, title=None):
-    """Heading "Figure N. <title>" (N from ``fig_id`` "figNN"), caption line; freeze the layout."""
+    """Heading "Figure N. <title>" (N from ``fig_id`` "figNN"; the title's symbols in mathtext, see
+    ``title_text``), caption line; freeze the layout."""
     number = re.fullmatch(r"fig([0-9]+)", fig_id)
     heading = f"Figure {int(number[1])}." if number else fig_id
-    fig.suptitle(f"{heading} {title}" if title else heading, fontsize=12)
+    fig.suptitle(f"{heading} {title_text(title)}" if title else heading, fontsize=12)
     caption_line(fig, caption)
     return freeze(fig)
 
@@ -261,15 +275,34 @@ def _sticking(spec, datasets, caption):
         axd[z].set_title(f"({z}) zoom of ({m}), step ending at t = {t[n]:.3g} s", loc="left", fontsize=10)
     ax = axd["e"]
     stick_rotation = ds["theta2_stick"].values[1:] - ds["theta2"].values[:-1]
-    ax.plot(mid, stick_rotation, color="tab:red", lw=1.2, label=r"$\theta^2_{stick}(t_n) - \theta^2(t_{n-1})$")
+    velocity = 100 * ds["Xg_dot"].values
+    ax.plot(mid, stick_rotation, color="tab:red", lw=1.0, label=r"$\theta^2_{stick}(t_n) - \theta^2(t_{n-1})$")
     ax.set_ylabel(r"$\Delta\theta^2$ in sticking (°)", color="tab:red")
     ax.set_xlabel("t (s)")
     tw = twin_axis(ax, "tab:purple", r"$\dot X_g$ (cm/s)")
-    tw.plot(t, 100 * ds["Xg_dot"].values, color="tab:purple", ls="--", lw=1.0, label=r"$\dot X_g$")
-    legend_on(ax, tw, loc="lower right", bbox_to_anchor=(1, 1), ncols=2, borderaxespad=0.2)
+    tw.plot(t, velocity, color="tab:purple", lw=5.0, alpha=0.4, solid_capstyle="butt", label=r"$\dot X_g$")
+    ax.set_zorder(tw.get_zorder() + 1)  # the sticking rotation over the wide band of the velocity
+    ax.patch.set_visible(False)
+    k, apart = proportional(stick_rotation, np.interp(mid, t, velocity))
+    if np.isfinite(k) and k != 0:  # the velocity axis at the scale where k Xg_dot falls on the rotation
+        lo, hi = ax.get_ylim()
+        tw.set_ylim(*sorted((lo / k, hi / k)))
+        tw.get_lines()[0].set_label(rf"$\dot X_g$, scaled by {k:.3g} °/(cm/s): they coincide within {apart:.2g}°")
+    legend_on(ax, tw, loc="lower right", bbox_to_anchor=(1, 1), ncols=1, borderaxespad=0.2)
     ax.set_title(f"(e) sticking rotation of the pad (max |Δθ²| = {np.nanmax(np.abs(stick_rotation)):.2f}°) "
                  "and ground velocity", loc="left")
     return _finish(fig, spec.id, caption, spec.title)
+
+
+def proportional(y, x):
+    """(k, max |y - k x|): the least-squares factor of y = k x (through 0) over the finite pairs, and the
+    largest distance of y from k x. The sticking rotation of a step is such a multiple of the ground
+    velocity: the jammed pad turns with RB1 by the step's ground displacement, about X_g_dot dt."""
+    ok = np.isfinite(y) & np.isfinite(x)
+    if not ok.any() or not np.any(x[ok]):
+        return float("nan"), float("nan")
+    k = float(x[ok] @ y[ok] / (x[ok] @ x[ok]))
+    return k, float(np.max(np.abs(y[ok] - k * x[ok])))
 
 
 def _two_phase(spec, datasets, caption):

@@ -27,6 +27,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
+from matplotlib.transforms import ScaledTranslation
 
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
@@ -43,6 +44,7 @@ LOG_AXES = ("dt",)
 MAX_VALUE_TICKS = 8  # a swept axis with at most this many values is ticked at its values
 POINTS_PER_ROW = 3  # history points side by side; more go to a block below
 COLUMN_INCHES = 3.9  # width of a history point's column
+FAILURE_SPACING = 10.0  # points between the failure marks of different curves at one x
 
 #: (summary variable, label, factor to plot units, plot unit)
 SUMMARY_VARIABLES = [
@@ -568,14 +570,35 @@ def _line_marks(ax, ds, name, marks):
                         fontsize=7, color="0.35", xytext=(-2, 0), textcoords="offset points")
 
 
-def _flag_marks(ax, x, values, capacity, failed, colour, slot):
-    """Red boxes around the points beyond capacity; ✕ on the bottom edge where the solver failed."""
+def _flag_marks(ax, x, values, capacity, failed, colour, failures):
+    """Red boxes around the points beyond capacity; the points where the solver failed are added to
+    ``failures`` (x, colour), drawn by ``_failure_marks``."""
     if capacity.any():
         ax.plot(x[capacity], values[capacity], ls="none", marker="s", ms=14, mfc="none", mec=CAPACITY_COLOUR,
                 mew=1.4, zorder=6, gid="capacity_exceeded")
     if failed.any():
-        ax.plot(x[failed], np.full(failed.sum(), 0.04 + 0.07 * slot), ls="none", marker="X", ms=9, color=colour,
-                mec="k", mew=0.6, transform=ax.get_xaxis_transform(), clip_on=False, zorder=6, gid="failed")
+        failures.append((x[failed], colour))
+
+
+def _failure_marks(ax, failures):
+    """✕ on the bottom edge of the axes (no value: the solver failed) at each failed point, in the colour
+    of its curve; the marks of the curves failing at the same x side by side, FAILURE_SPACING points
+    apart, centred on it."""
+    curves_at = {}
+    for k, (x, _) in enumerate(failures):
+        for value in x:
+            curves_at.setdefault(float(value), []).append(k)
+    for k, (x, colour) in enumerate(failures):
+        by_offset = {}
+        for value in x:
+            curves = curves_at[float(value)]
+            by_offset.setdefault(curves.index(k) - (len(curves) - 1) / 2, []).append(value)
+        for offset, xs in by_offset.items():
+            transform = ax.get_xaxis_transform()
+            if offset:
+                transform += ScaledTranslation(FAILURE_SPACING * offset / 72, 0, ax.figure.dpi_scale_trans)
+            ax.plot(xs, np.zeros(len(xs)), ls="none", marker="X", ms=9, color=colour, mec="k", mew=0.6,
+                    transform=transform, clip_on=False, zorder=6, gid="failed")
 
 
 def _flag_handles(ds, models, dims):
@@ -591,7 +614,7 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
     x = _plot_values(ds, x_name)
     groups = list(ds[drawn[1]].values) if len(drawn) > 1 else [None]
     for ax, (name, label, factor, unit) in zip(axs, variables):
-        slot = 0
+        failures = []
         for model in (m for m in models if _defined(ds, name, m)):
             style = _line(model, models)
             for g, group in enumerate(groups):
@@ -601,12 +624,12 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
                 marker = dict(_marker(model), **shape)
                 ax.plot(x, values, **style, **marker)
                 capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
-                _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
-                slot += 1
+                _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 suite = ds[f"{name}_suite"].sel(model=model)
                 for statistic, look in SUITE_LINES.items():
                     ax.plot(x, factor * suite.sel(statistic=statistic).values, color=style["color"], **look)
+        _failure_marks(ax, failures)
         _line_marks(ax, ds, x_name, marks)
         _scale(ax, "x", x_name, x)
         ax.set_xlabel(_axis_label(ds, x_name))
@@ -631,17 +654,19 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
     names = [str(v) for v in ds[name_axis].values]
     x = np.arange(len(names), dtype=float)
     for ax, (name, label, factor, unit) in zip(axs, variables):
-        for slot, model in enumerate(m for m in models if _defined(ds, name, m)):
+        failures = []
+        for model in (m for m in models if _defined(ds, name, m)):
             sel = ds.sel(model=model)
             values = factor * sel[name].values
             style = _line(model, models)
             ax.plot(x, values, ls="none", color=style["color"], zorder=style["zorder"], **_marker(model))
             capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
-            _flag_marks(ax, x, values, capacity, failed, style["color"], slot)
+            _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 for statistic, look in SUITE_LINES.items():
                     ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)),
                                color=style["color"], **look)
+        _failure_marks(ax, failures)
         _line_marks(ax, ds, name_axis, marks)
         ax.set_xticks(x, names, rotation=30 if name_axis == "record" else 0, ha="right" if name_axis == "record"
                       else "center")
