@@ -137,7 +137,8 @@ def summary(output, ds, idx, k, fps):
     """The one-line report: steps, frames, stride, duration."""
     t, n = ds["t"].values, ds.sizes["t"]
     how = "every step" if k == 1 else f"every {_ordinal(k)} step" + ("" if (n - 1) % k == 0 else " and the last")
-    return (f"{output}: {_count(n, 'step')} (t = {t[0]:g} .. {t[-1]:g} s) shown as {_count(len(idx), 'frame')}, "
+    return (f"{output}: {_count(n - 1, 'step')} ({_count(n, 'state')}, t = {t[0]:g} .. {t[-1]:g} s) shown as "
+            f"{_count(len(idx), 'frame')}, "
             f"{how}; {fps:g} fps, {len(idx) / fps:.1f} s")
 
 
@@ -739,7 +740,7 @@ def animate(path, output, *, start=None, end=None, fps=10, max_frames=MAX_FRAMES
 
     Returns
     -------
-    str : one-line summary, e.g. "out.gif: 1001 steps (t = 0 .. 1 s) shown as 168 frames, every 6th
+    str : one-line summary, e.g. "out.gif: 1000 steps (1001 states, t = 0 .. 1 s) shown as 168 frames, every 6th
         step and the last; 10 fps, 16.8 s".
 
     Raises

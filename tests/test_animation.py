@@ -74,7 +74,7 @@ def _run(argv):
 def test_gif_has_one_frame_per_step_and_decodes(histories, tmp_path):
     out = tmp_path / "stick.gif"
     line = animate(histories["stick"], out, fps=20)
-    assert f"{N_STEPS} steps" in line and f"shown as {N_STEPS} frames, every step" in line
+    assert f"{N_STEPS - 1} steps ({N_STEPS} states" in line and f"shown as {N_STEPS} frames, every step" in line
     with Image.open(out) as im:
         assert im.n_frames == N_STEPS and im.info["duration"] == 50 and im.size == (1100, 720)
         for k in range(im.n_frames):
@@ -172,7 +172,7 @@ def test_frame_budget(n, budget):
 def test_long_history_is_subsampled_and_says_so(histories, tmp_path):
     out = tmp_path / "short.gif"
     line = animate(histories["stick"], out, max_frames=5)
-    assert "21 steps (t = 0 .. 0.2 s) shown as 5 frames, every 5th step;" in line
+    assert "20 steps (21 states, t = 0 .. 0.2 s) shown as 5 frames, every 5th step;" in line
     with Image.open(out) as im:
         assert im.n_frames == 5
 
@@ -181,7 +181,7 @@ def test_long_history_is_subsampled_and_says_so(histories, tmp_path):
 def test_start_end_select_steps(histories, tmp_path):
     out = tmp_path / "part.gif"
     line = animate(histories["stick"], out, start=0.05, end=0.1)
-    assert "6 steps (t = 0.05 .. 0.1 s) shown as 6 frames" in line
+    assert "5 steps (6 states, t = 0.05 .. 0.1 s) shown as 6 frames" in line
     with Image.open(out) as im:
         assert im.n_frames == 6
     part = select(xr.load_dataset(histories["stick"]), 0.05, 0.1)
@@ -257,8 +257,8 @@ def test_interrupted_rendering_leaves_the_previous_output(histories, tmp_path, m
 def test_command_line_prints_the_summary(histories, tmp_path, capsys):
     out = tmp_path / "cli.gif"
     assert _run([histories["stick"], "-o", out, "--max-frames", "3", "--fps", "5"]) == 0
-    assert capsys.readouterr().out == (f"dccss animate: wrote {out}: 21 steps (t = 0 .. 0.2 s) shown as 3 frames, "
-                                       "every 10th step; 5 fps, 0.6 s\n")
+    assert capsys.readouterr().out == (f"dccss animate: wrote {out}: 20 steps (21 states, t = 0 .. 0.2 s) "
+                                       "shown as 3 frames, every 10th step; 5 fps, 0.6 s\n")
 
 
 # --- reproducible bytes, mp4 -----------------------------------------------------------------------

@@ -89,6 +89,9 @@ def test_run_counts_steps_and_the_states_they_join(tmp_path, capsys):
     line = capsys.readouterr().out
     assert xr.open_dataset(out).sizes["t"] == 101
     assert "stick_slip, 100 steps (101 states): max |theta2|" in line, line
+    # dccss animate counts the same history the same way
+    assert cli.main(["animate", str(out), "-o", str(tmp_path / "out.gif"), "--max-frames", "20"]) == 0
+    assert ": 100 steps (101 states, t = " in capsys.readouterr().out
 
 
 # --- 3. every mistake at once -----------------------------------------------------------------------
