@@ -218,3 +218,13 @@ def test_every_configured_title_prints_its_symbols_in_mathtext():
 
     for spec in SPECS.values():
         assert "_" not in _outside_math(title_text(spec.title)), spec.title
+
+
+def test_every_case_set_caption_prints_its_symbols_in_mathtext():
+    """The caption line of a paper figure is its case set's description: 'X_g,max' and 'theta2(t0)' are
+    printed as the axes print them, not raw."""
+    from dccss.paper.figures import title_text
+
+    for name, case_set in CONFIG["case_sets"].items():
+        caption = _outside_math(title_text(case_set["description"]))
+        assert "_" not in caption and "theta2" not in caption and "alpha" not in caption, (name, caption)

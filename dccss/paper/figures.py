@@ -51,12 +51,16 @@ from .specs import KINDS, FigureSpec, Panel, Runs, SpecError, figure_spec, figur
 #: the paper's symbols as the titles of the configuration write them (plain text, one line) and as the
 #: axes print them (mathtext)
 TITLE_SYMBOLS = {r"\|C_q\|": r"$|\mathbf{C_q}|$", r"R_y(?:³|\^3)": r"$R_y^3$",
-                 **{rf"\bI_{c}\b": I_LABEL[c] for c in CORNERS}}
+                 **{rf"\bI_{c}\b": I_LABEL[c] for c in CORNERS},
+                 # the case sets' descriptions (config/config.yaml), printed in the caption line
+                 r"\bX_g,max\b": r"$X_{g,\max}$", r"\btheta2\(t0\)": r"$\theta^2(t_0)$",
+                 r"\bsin\(alpha1 - alpha21\)": r"$\sin(\alpha^1 - \alpha^{21})$"}
 
 
 def title_text(title):
-    r"""A title with the paper's symbols as the axes print them: "|C_q|" -> $|\mathbf{C_q}|$, "R_y³" ->
-    $R_y^3$, "I_A" -> $I_A^1$ (the corners' labels)."""
+    r"""A title or caption with the paper's symbols as the axes print them: "|C_q|" -> $|\mathbf{C_q}|$,
+    "R_y³" -> $R_y^3$, "I_A" -> $I_A^1$ (the corners' labels), "X_g,max" -> $X_{g,\max}$, "theta2(t0)" ->
+    $\theta^2(t_0)$."""
     for pattern, symbol in TITLE_SYMBOLS.items():
         title = re.sub(pattern, lambda _, symbol=symbol: symbol, title)
     return title
@@ -68,7 +72,7 @@ def _finish(fig, fig_id, caption, title=None):
     number = re.fullmatch(r"fig([0-9]+)", fig_id)
     heading = f"Figure {int(number[1])}." if number else fig_id
     fig.suptitle(f"{heading} {title_text(title)}" if title else heading, fontsize=12)
-    caption_line(fig, caption)
+    caption_line(fig, title_text(caption))
     return freeze(fig)
 
 
