@@ -98,7 +98,7 @@ def test_figure(fig_id, datasets, tmp_path):
     for unit in REQUIRED_UNITS.get(fig_id, ["(s)"]):
         assert any(label.endswith(unit) for label in labels), (unit, labels)
     assert fig._suptitle.get_text() == f"Figure {int(fig_id[3:])}. {title_text(SPECS[fig_id].title)}"
-    assert CAPTION in [text.get_text() for text in fig.texts]
+    assert title_text(CAPTION) in [text.get_text() for text in fig.texts]
     assert 11 <= fig.get_figwidth() <= 14
 
     first, second = tmp_path / "first", tmp_path / "second"
