@@ -18,9 +18,10 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
+
+from worktree import worktree
 
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ("compliant", "stick_slip")
@@ -72,30 +73,20 @@ def main():
     if args.inner:
         print(json.dumps(measure(args.n, args.repeat)))
         return
-    with tempfile.TemporaryDirectory() as tmp:
-        tree = Path(tmp) / "tree"
-        if args.baseline:
-            subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", "-q", str(tree), args.baseline],
-                           check=True)
-        try:
-            best = {"checkout": dict.fromkeys(MODELS, 0.0), "baseline": dict.fromkeys(MODELS, 0.0)}
-            for _ in range(args.rounds):
-                for name, where in (("checkout", None), ("baseline", tree)):
-                    if name == "baseline" and not args.baseline:
-                        continue
-                    speeds = run(where, args.n, args.repeat)
-                    for model in MODELS:
-                        print(f"kernels tree={name} model={model} N={args.n} steps=1000 "
-                              f"case_steps_per_s={speeds[model]:.4g}", flush=True)
-                        best[name][model] = max(best[name][model], speeds[model])
-            if args.baseline:
+    best = {"checkout": dict.fromkeys(MODELS, 0.0), "baseline": dict.fromkeys(MODELS, 0.0)}
+    with worktree(args.baseline) as tree:
+        for _ in range(args.rounds):
+            for name, where in (("checkout", None), ("baseline", tree)):
+                if name == "baseline" and tree is None:
+                    continue
+                speeds = run(where, args.n, args.repeat)
                 for model in MODELS:
-                    print(f"ratio model={model} checkout_over_baseline="
-                          f"{best['checkout'][model] / best['baseline'][model]:.3f}")
-        finally:
-            if args.baseline:
-                subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(tree)], check=True)
-
+                    print(f"kernels tree={name} model={model} N={args.n} steps=1000 "
+                          f"case_steps_per_s={speeds[model]:.4g}", flush=True)
+                    best[name][model] = max(best[name][model], speeds[model])
+    if args.baseline:
+        for model in MODELS:
+            print(f"ratio model={model} checkout_over_baseline={best['checkout'][model] / best['baseline'][model]:.3f}")
 
 if __name__ == "__main__":
     main()

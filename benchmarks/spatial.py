@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from worktree import worktree
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = ROOT / "config/studies/records"
@@ -59,17 +60,11 @@ def measure(dt, repeat, save):
 
 def baseline(rev, dt, repeat, save):
     """``measure`` on revision ``rev`` (a temporary worktree), in a subprocess."""
-    with tempfile.TemporaryDirectory() as tmp:
-        tree = Path(tmp) / "tree"
-        subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", "-q", str(tree), rev], check=True)
-        try:
-            env = {**os.environ, "PYTHONPATH": str(tree)}
-            res = subprocess.run([sys.executable, __file__, "--inner", "--dt", str(dt), "--repeat", str(repeat),
-                                  "--save", str(save)], env=env, check=True, capture_output=True, text=True)
-        finally:
-            subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(tree)], check=True)
+    with worktree(rev) as tree:
+        env = {**os.environ, "PYTHONPATH": str(tree)}
+        res = subprocess.run([sys.executable, __file__, "--inner", "--dt", str(dt), "--repeat", str(repeat),
+                              "--save", str(save)], env=env, check=True, capture_output=True, text=True)
     return json.loads(res.stdout.splitlines()[-1])
-
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

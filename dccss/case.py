@@ -345,13 +345,17 @@ def _device_friction(structure, geometry):
         raise CaseError(str(err)) from None
 
 
-def load_case(path) -> Case:
-    """Read and validate a YAML case file."""
+def read_yaml(path, what="file"):
+    """The content of the YAML file ``path`` (a CaseError, naming it as ``what``, if it is missing or not YAML)."""
     path = Path(path)
     if not path.is_file():
-        raise CaseError(f"case file {str(path)!r} does not exist")
+        raise CaseError(f"{what} {str(path)!r} does not exist")
     try:
-        mapping = yaml.safe_load(path.read_text())
+        return yaml.safe_load(path.read_text())
     except yaml.YAMLError as err:
-        raise CaseError(f"case file {str(path)!r} is not valid YAML: {err}") from None
-    return case_from(mapping, path.parent)
+        raise CaseError(f"{what} {str(path)!r} is not valid YAML: {err}") from None
+
+
+def load_case(path) -> Case:
+    """Read and validate a YAML case file."""
+    return case_from(read_yaml(path, "case file"), Path(path).parent)

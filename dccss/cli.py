@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ._version import __version__
-from .case import CaseError, case_from, load_case
+from .case import CaseError, case_from, load_case, read_yaml
 from .excitation import step_times
 from .files import write_csv, write_netcdf
 from .mechanics import backend
@@ -218,19 +218,6 @@ def file_kind(mapping) -> str:
                     f"{schema('study')['required']}")
 
 
-def _read(path):
-    """The mapping of a YAML file (a CaseError if it is missing or not YAML)."""
-    import yaml
-
-    path = Path(path)
-    if not path.is_file():
-        raise CaseError(f"file {str(path)!r} does not exist")
-    try:
-        return yaml.safe_load(path.read_text())
-    except yaml.YAMLError as err:
-        raise CaseError(f"file {str(path)!r} is not valid YAML: {err}") from None
-
-
 def _validated(kind, mapping, base) -> str:
     """The summary of a case or study file's mapping (files relative to ``base``), checked."""
     if kind == "case":
@@ -263,7 +250,7 @@ def _study_summary(study) -> str:
 def _check(args) -> int:
     """``dccss check FILE``: 0 and a summary if FILE is a valid case or study file, 2 and every error if not."""
     try:
-        mapping = _read(args.file)
+        mapping = read_yaml(args.file)
         kind = file_kind(mapping)
     except CaseError as err:
         print(f"dccss: {args.file}: {err}", file=sys.stderr)
