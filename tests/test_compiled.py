@@ -118,6 +118,21 @@ def test_one_case_histories_and_summaries(devices, model, normals, k):
                 summaries.summarize(model, g, Xg, t0, normals=normals, times=times))
 
 
+@pytest.mark.parametrize("model", models.MODELS)
+@pytest.mark.parametrize("normals", NORMALS)
+def test_one_case_histories_round_as_the_reference_bit_for_bit(devices, model, normals):
+    """One case, the reference evaluates the rows on Python scalars and both take the same
+    written-out solve (``linear.solve4``): every configuration, residual and contact point of
+    the history is the reference's to the last bit (no tolerance), on all eight devices."""
+    devices, motions, theta2_0 = devices
+    for k, g in enumerate(devices):
+        ours = compiled.run(model, g, motions[:, k], theta2_0[k], normals=normals)
+        ref = models.run(model, g, motions[:, k], theta2_0[k], normals=normals)
+        for key in ("q", "q_stick", "residual", "point", "normal"):
+            if key in ref:
+                assert np.array_equal(ours[key], ref[key], equal_nan=True), (k, key)
+
+
 def test_batch_of_one_and_shared_motion(devices):
     """A batch of one takes the reference's one-case path; a (T,) motion is shared by a batch."""
     devices, motions, theta2_0 = devices

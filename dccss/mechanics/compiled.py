@@ -10,13 +10,12 @@ The entry points take and return what the numpy reference does:
 
 The algorithm is the reference's, row for row: the same constraint rows (``constraints``: the
 tangency rows of Eqs. 6-11, the pin rows of Eq. 32, the slip rows of Eq. 37), the prescribed
-rows set first and Newton on the contact rows over the free coordinates (``newton``), the same
-test max|g| <= tol and iteration cap, the same predictors (``models._extrapolate``'s cubic for
-compliant sliding; the previous sticking and slipping increments of ``stick_slip_steps``), the
-same theta2 wrapping, contact projection (signed or unsigned normals), jammed diagonal (A-D,
-or B-C when X_g decreases) and slip set built from the end of sticking (``slip_set``). The
-linear solve is LAPACK's algorithm (Gaussian elimination with partial pivoting, a pivot
-exactly 0 being singular), so the iterates agree with the reference to round-off.
+rows set first and Newton on the contact rows over the free coordinates (``newton``) with the
+same written-out 4 x 4 solve (``linear.solve4``), the same test max|g| <= tol and iteration
+cap, the same predictors (``models._extrapolate``'s cubic for compliant sliding; the previous
+sticking and slipping increments of ``stick_slip_steps``), the same theta2 wrapping, contact
+projection (signed or unsigned normals), jammed diagonal (A-D, or B-C when X_g decreases) and
+slip set built from the end of sticking (``slip_set``).
 
 Layout
 ------
@@ -69,13 +68,16 @@ try:
 except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs numpy
     raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
 
-from . import newton
+from . import linear, newton
 from .capacity import CAPACITY_POLICIES, case_error, mark_failures
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
 from .newton import NewtonOptions
-from .scalar import OPTIONS, jit, max_abs
+from .scalar import OPTIONS, compilable, jit, max_abs
+
+compilable(*linear.SCALAR)
+solve4 = linear.solve4
 
 # --- names ---------------------------------------------------------------------------------
 CORNER_A, CORNER_B, CORNER_C, CORNER_D = 0, 1, 2, 3
@@ -290,69 +292,6 @@ def _rows(kind, F, cset):
 
 # --- Newton-Raphson (newton.py) ------------------------------------------------------------
 @jit
-def _pivot(column):
-    """Partial pivoting: the index of the largest |entry| of a column (the first on ties, as
-    LAPACK's idamax)."""
-    p, best = 0, abs(column[0])
-    for r in range(1, len(column)):
-        if abs(column[r]) > best:
-            p, best = r, abs(column[r])
-    return p
-
-
-@jit
-def _eliminate(pivot, inverse, row, c):
-    """row - (row[c] / pivot[c]) pivot on the entries right of column c of a row [A | b] (the
-    multiplier from the pivot's reciprocal, as LAPACK getf2)."""
-    f = row[c] * inverse
-    return (row[0], row[1] - f * pivot[1] if c < 1 else row[1], row[2] - f * pivot[2] if c < 2 else row[2],
-            row[3] - f * pivot[3], row[4] - f * pivot[4])
-
-
-@jit
-def _solve4(A, b):
-    """Solve A x = b (4 x 4) by Gaussian elimination with partial pivoting (LAPACK getrf/getrs);
-    ok is False when a pivot is exactly zero: numpy's LinAlgError('Singular matrix'). The rows
-    are [A | b]."""
-    r0 = (A[0][0], A[0][1], A[0][2], A[0][3], b[0])
-    r1 = (A[1][0], A[1][1], A[1][2], A[1][3], b[1])
-    r2 = (A[2][0], A[2][1], A[2][2], A[2][3], b[2])
-    r3 = (A[3][0], A[3][1], A[3][2], A[3][3], b[3])
-    p = _pivot((r0[0], r1[0], r2[0], r3[0]))
-    if p == 1:
-        r0, r1 = r1, r0
-    elif p == 2:
-        r0, r2 = r2, r0
-    elif p == 3:
-        r0, r3 = r3, r0
-    if r0[0] == 0.0:
-        return False, b
-    inverse = 1.0 / r0[0]
-    r1, r2, r3 = _eliminate(r0, inverse, r1, 0), _eliminate(r0, inverse, r2, 0), _eliminate(r0, inverse, r3, 0)
-    p = _pivot((r1[1], r2[1], r3[1]))
-    if p == 1:
-        r1, r2 = r2, r1
-    elif p == 2:
-        r1, r3 = r3, r1
-    if r1[1] == 0.0:
-        return False, b
-    inverse = 1.0 / r1[1]
-    r2, r3 = _eliminate(r1, inverse, r2, 1), _eliminate(r1, inverse, r3, 1)
-    if _pivot((r2[2], r3[2])) == 1:
-        r2, r3 = r3, r2
-    if r2[2] == 0.0:
-        return False, b
-    r3 = _eliminate(r2, 1.0 / r2[2], r3, 2)
-    if r3[3] == 0.0:
-        return False, b
-    x3 = r3[4] / r3[3]
-    x2 = (r2[4] - r2[3] * x3) / r2[2]
-    x1 = (r1[4] - r1[2] * x2 - r1[3] * x3) / r1[1]
-    x0 = (r0[4] - r0[1] * x1 - r0[2] * x2 - r0[3] * x3) / r0[0]
-    return True, (x0, x1, x2, x3)
-
-
-@jit
 def _step(kind, q, dq):
     """q - dq on the free coordinates: R_x^2, R_y^2, theta^2 and R_x^3 (slipping) or R_y^3."""
     if kind == SLIPPING:
@@ -373,7 +312,7 @@ def _newton(kind, q, cset, tol, max_iter):
             return CONVERGED, it, norm, q, g, J, F
         if it == max_iter:
             return NOT_CONVERGED, it, norm, q, g, J, F
-        ok, dq = _solve4(J, g)
+        ok, dq = solve4(J, g)
         if not ok:
             return SINGULAR, it, norm, q, g, J, F
         q = _step(kind, q, dq)

@@ -6,7 +6,8 @@ is block elimination of Eq. 13, not a different method: the iterates are Newton'
 
 One case (q0 of shape (9,)) runs on Python scalars, avoiding numpy's per-call overhead on the
 small arrays of the rows; a batch (q0 of shape (..., 9)) stacks the Jacobians. Both evaluate the
-same constraint rows and solve with ``numpy.linalg.solve``.
+same constraint rows and solve with the written-out elimination of ``linear`` (the compiled
+kernels' own), not LAPACK, whose rounding depends on the CPU.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 
 from .constraints import Q_NAMES, stack_jacobian, stack_residual
 from .kinematics import frames
+from .linear import solve4, solve4_batch
 
 
 class ConvergenceError(RuntimeError):
@@ -101,12 +103,11 @@ def _solve_one(cset, q, options, context):
             return NewtonResult(np.array(x), it, max(abs(gi) for gi in g))
         if it == options.max_iter:
             break
-        J = np.array([[entries.get(c, 0.0) for c in free] for _, entries in rows])
-        try:
-            dq = np.linalg.solve(J, g)
-        except np.linalg.LinAlgError:
-            raise_singular(cset, J, context, ())
-        for c, d in zip(free, dq.tolist()):
+        J = tuple(tuple(entries.get(c, 0.0) for c in free) for _, entries in rows)
+        ok, dq = solve4(J, g)
+        if not ok:
+            raise_singular(cset, np.array(J), context, ())
+        for c, d in zip(free, dq):
             x[c] -= d
     if options.on_failure == "mark":
         return NewtonResult(np.full(9, np.nan), it, float("nan"), True)
@@ -129,17 +130,14 @@ def _solve_batch(cset, q, options, context):
         if it == options.max_iter:
             break
         J = stack_jacobian(rows, free, shape)  # only when a step is taken
-        try:
-            dq = np.linalg.solve(J, g[..., None])[..., 0]
-        except np.linalg.LinAlgError:
-            singular = _singular_cases(J, active)
+        ok, dq = solve4_batch(J, g)
+        singular = active & ~ok
+        if singular.any():
             if not mark:
                 raise_singular(cset, J, context, tuple(int(i) for i in np.argwhere(singular)[0]))
             failed |= singular
             q[singular] = np.nan
             active &= ~singular
-            J[~active] = np.eye(len(free))  # solvable stand-ins for the cases not stepped
-            dq = np.linalg.solve(J, g[..., None])[..., 0]
         dq[~active] = 0.0
         q[..., columns] -= dq
         iterations += active
@@ -149,17 +147,6 @@ def _solve_batch(cset, q, options, context):
     score = np.where(active, np.where(np.isnan(norm), np.inf, norm), -np.inf)
     index = tuple(int(i) for i in np.unravel_index(np.argmax(score), score.shape))
     raise_not_converged(cset, g[index], options, context, index)
-
-
-def _singular_cases(J, active):
-    """Boolean mask of the active cases whose Jacobian is exactly singular."""
-    singular = np.zeros(active.shape, dtype=bool)
-    for index in zip(*np.nonzero(active)):
-        try:
-            np.linalg.solve(J[index], np.ones(J.shape[-1]))
-        except np.linalg.LinAlgError:
-            singular[index] = True
-    return singular
 
 
 def context(n, times, phase):

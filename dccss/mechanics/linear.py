@@ -1,0 +1,104 @@
+"""The 4 x 4 solve of every Newton step, written out: Gaussian elimination with partial pivoting.
+
+One algorithm, the same operations in the same order wherever a Newton step is taken: ``solve4``
+runs interpreted (one case, ``newton``) and compiled into the kernels (``compiled`` registers these
+functions with Numba: ``scalar.compilable``), and ``solve4_batch`` repeats it elementwise over a
+stack of systems (the batched reference). So the interpreted and compiled solvers round alike, on
+every machine. LAPACK's ``gesv`` (``numpy.linalg.solve``) would not: OpenBLAS picks its kernels by
+CPU, and their fused multiply-adds round differently on another processor.
+
+A pivot exactly 0 is singular (``ok`` False), as LAPACK's: numpy's LinAlgError('Singular matrix').
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def pivot(column):
+    """Partial pivoting: the index of the largest |entry| of a column (the first on ties, as
+    LAPACK's idamax; a NaN is never chosen after the first entry)."""
+    p, best = 0, abs(column[0])
+    for r in range(1, len(column)):
+        if abs(column[r]) > best:
+            p, best = r, abs(column[r])
+    return p
+
+
+def eliminate(pivot_row, inverse, row, c):
+    """row - (row[c] / pivot[c]) pivot on the entries right of column c of a row [A | b] (the
+    multiplier from the pivot's reciprocal, as LAPACK getf2)."""
+    f = row[c] * inverse
+    return (row[0], row[1] - f * pivot_row[1] if c < 1 else row[1], row[2] - f * pivot_row[2] if c < 2 else row[2],
+            row[3] - f * pivot_row[3], row[4] - f * pivot_row[4])
+
+
+def solve4(A, b):
+    """Solve A x = b (4 x 4; A a tuple of rows, b a tuple): (ok, x); ok is False when a pivot is
+    exactly zero (x is then b)."""
+    r0 = (A[0][0], A[0][1], A[0][2], A[0][3], b[0])
+    r1 = (A[1][0], A[1][1], A[1][2], A[1][3], b[1])
+    r2 = (A[2][0], A[2][1], A[2][2], A[2][3], b[2])
+    r3 = (A[3][0], A[3][1], A[3][2], A[3][3], b[3])
+    p = pivot((r0[0], r1[0], r2[0], r3[0]))
+    if p == 1:
+        r0, r1 = r1, r0
+    elif p == 2:
+        r0, r2 = r2, r0
+    elif p == 3:
+        r0, r3 = r3, r0
+    if r0[0] == 0.0:
+        return False, (b[0], b[1], b[2], b[3])
+    inverse = 1.0 / r0[0]
+    r1, r2, r3 = eliminate(r0, inverse, r1, 0), eliminate(r0, inverse, r2, 0), eliminate(r0, inverse, r3, 0)
+    p = pivot((r1[1], r2[1], r3[1]))
+    if p == 1:
+        r1, r2 = r2, r1
+    elif p == 2:
+        r1, r3 = r3, r1
+    if r1[1] == 0.0:
+        return False, (b[0], b[1], b[2], b[3])
+    inverse = 1.0 / r1[1]
+    r2, r3 = eliminate(r1, inverse, r2, 1), eliminate(r1, inverse, r3, 1)
+    if pivot((r2[2], r3[2])) == 1:
+        r2, r3 = r3, r2
+    if r2[2] == 0.0:
+        return False, (b[0], b[1], b[2], b[3])
+    r3 = eliminate(r2, 1.0 / r2[2], r3, 2)
+    if r3[3] == 0.0:
+        return False, (b[0], b[1], b[2], b[3])
+    x3 = r3[4] / r3[3]
+    x2 = (r2[4] - r2[3] * x3) / r2[2]
+    x1 = (r1[4] - r1[2] * x2 - r1[3] * x3) / r1[1]
+    x0 = (r0[4] - r0[1] * x1 - r0[2] * x2 - r0[3] * x3) / r0[0]
+    return True, (x0, x1, x2, x3)
+
+
+#: what the kernels compile (``scalar.compilable``)
+SCALAR = (pivot, eliminate, solve4)
+
+
+def solve4_batch(A, b):
+    """``solve4`` on a stack: A (..., 4, 4), b (..., 4) -> ok (...,), x (..., 4), each system
+    with the same operations as ``solve4`` (x is meaningless where ok is False)."""
+    M = np.concatenate([np.asarray(A, dtype=float), np.asarray(b, dtype=float)[..., None]], axis=-1)
+    ok = np.ones(M.shape[:-2], dtype=bool)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for c in range(4):
+            a = np.abs(M[..., c:, c])
+            # pivot(): the first largest; a NaN is chosen only where it is the first entry
+            p = c + np.where(np.isnan(a[..., 0]), 0, np.argmax(np.where(np.isnan(a), -1.0, a), axis=-1))
+            perm = np.broadcast_to(np.arange(4), M.shape[:-2] + (4,)).copy()
+            np.put_along_axis(perm, p[..., None], c, axis=-1)
+            perm[..., c] = p
+            M = np.take_along_axis(M, perm[..., None], axis=-2)
+            ok &= M[..., c, c] != 0.0
+            inverse = 1.0 / M[..., c, c]
+            for r in range(c + 1, 4):
+                f = M[..., r, c] * inverse
+                M[..., r, c + 1:] = M[..., r, c + 1:] - f[..., None] * M[..., c, c + 1:]
+        x3 = M[..., 3, 4] / M[..., 3, 3]
+        x2 = (M[..., 2, 4] - M[..., 2, 3] * x3) / M[..., 2, 2]
+        x1 = (M[..., 1, 4] - M[..., 1, 2] * x2 - M[..., 1, 3] * x3) / M[..., 1, 1]
+        x0 = (M[..., 0, 4] - M[..., 0, 1] * x1 - M[..., 0, 2] * x2 - M[..., 0, 3] * x3) / M[..., 0, 0]
+    return ok, np.stack([x0, x1, x2, x3], axis=-1)

@@ -1,0 +1,63 @@
+"""The written-out 4 x 4 solve (mechanics.linear): it solves, it finds the singular systems LAPACK
+finds, and the batched and compiled forms round as the scalar one, bit for bit."""
+
+import numpy as np
+import pytest
+
+from dccss.mechanics import linear
+
+
+def systems(n=400, seed=3):
+    rng = np.random.default_rng(seed)
+    A = rng.normal(size=(n, 4, 4)) * rng.uniform(1e-3, 1e3, size=(n, 1, 4))  # badly scaled columns
+    A[::7, 1, 0] = A[::7, 2, 0] = A[::7, 0, 0]  # ties in the first pivot search
+    A[::11, 3, :] = 0.0  # singular: the last pivot is exactly 0
+    return A, rng.normal(size=(n, 4))
+
+
+def scalar(A, b):
+    return linear.solve4(tuple(tuple(r) for r in A.tolist()), tuple(b.tolist()))
+
+
+def test_solves_as_lapack_to_round_off():
+    A, b = systems()
+    regular = np.abs(np.linalg.det(A)) > 1e-9 * np.prod(np.abs(A).max(axis=-1), axis=-1)
+    for Ai, bi in zip(A[regular], b[regular]):
+        ok, x = scalar(Ai, bi)
+        assert ok
+        cond = np.linalg.cond(Ai)
+        assert np.allclose(x, np.linalg.solve(Ai, bi), rtol=0, atol=1e-13 * cond * np.abs(x).max())
+
+
+def test_singular_where_lapack_says_singular():
+    A = np.array([[1.0, 2.0, 0.0, 0.0], [2.0, 4.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    with pytest.raises(np.linalg.LinAlgError):
+        np.linalg.solve(A, np.ones(4))
+    assert scalar(A, np.ones(4))[0] is False
+    assert not linear.solve4_batch(A[None], np.ones((1, 4)))[0][0]
+    assert scalar(np.eye(4), np.ones(4)) == (True, (1.0, 1.0, 1.0, 1.0))
+
+
+def test_batch_rounds_as_the_scalar_solve():
+    A, b = systems()
+    A[5, 2, 1] = np.nan  # a NaN entry: NaN out, as the scalar solve
+    ok, x = linear.solve4_batch(A, b)
+    for k in range(len(A)):
+        ok_k, x_k = scalar(A[k], b[k])
+        assert ok[k] == ok_k, k
+        if ok_k:
+            assert np.array_equal(x[k], np.array(x_k), equal_nan=True), k
+    assert np.array_equal(~ok, np.arange(len(A)) % 11 == 0)
+
+
+def test_compiled_rounds_as_the_interpreted_solve():
+    from numba import njit
+
+    from dccss.mechanics.scalar import compilable
+
+    compilable(*linear.SCALAR)
+    compiled = njit(lambda A, b: linear.solve4(A, b))
+    A, b = systems(50)
+    for Ai, bi in zip(A, b):
+        args = (tuple(tuple(r) for r in Ai.tolist()), tuple(bi.tolist()))
+        assert compiled(*args) == linear.solve4(*args)
