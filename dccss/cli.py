@@ -42,10 +42,11 @@ EXIT_CODES = {0: "written (also a history marked failed with on_failure: mark)",
               3: "solver failure (on_failure: error); nothing is written",
               4: "the pad reached a retaining ring (capacity: error); nothing is written"}
 #: what each value of DCCSS_BACKEND runs (``dccss.mechanics.backend``)
-BACKEND_CHOICES = {"auto": "the compiled kernels where numba is installed and the run is large enough for them to "
-                           "pay, the numpy reference otherwise (the default)",
+BACKEND_CHOICES = {"auto": "the kernels, compiled where the run is large enough for them to pay, interpreted "
+                           "otherwise (the default; the same results to the last bit)",
                    "numba": "always the compiled kernels (an error where numba is not installed)",
-                   "numpy": "always the numpy reference"}
+                   "python": "always the kernels interpreted, on Python numbers",
+                   "numpy": "the numpy reference, an independent implementation (equal to about 1e-13)"}
 
 
 def _summary(ds) -> str:

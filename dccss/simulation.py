@@ -51,7 +51,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         Extra global attributes (e.g. a case id).
     progress : callable, optional
         ``progress(n, N)``, called after each step n of N (once, when the history is done, where
-        compiled kernels run it: long planar runs and every spatial run).
+        the kernels run it: every run but those of the numpy reference, ``DCCSS_BACKEND=numpy``).
     structure : Structure, optional
         A superstructure (friction μ, damping ζ) on the device. None: the ground displacement is
         imposed on RB1 relative to RB3, the superstructure held still in space. A structure: the

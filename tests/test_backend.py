@@ -1,9 +1,10 @@
 """Backend selection (DCCSS_BACKEND, dccss.mechanics.backend) and the dispatch of models.run,
-summaries.summarize and simulate to the compiled kernels.
+summaries.summarize and simulate to the kernels, compiled or interpreted.
 
-The fast tests stand in a fake for the compiled module (or block numba's import); the tests
-marked slow run the real kernels (they compile them with an empty cache) and check that both
-backends give the same datasets through ``simulate``, failures and capacity policies included."""
+The fast tests stand in a fake for the kernels' module (or block numba's import); the tests
+marked slow run the real kernels and check that they give the numpy reference's datasets through
+``simulate``, failures and capacity policies included, and that interpreted and compiled kernels
+give the same bytes."""
 
 import os
 import sys
@@ -38,7 +39,8 @@ def clean(monkeypatch):
 
 # --- DCCSS_BACKEND ---------------------------------------------------------------------------
 @pytest.mark.parametrize("value, expected", [(None, "auto"), ("", "auto"), ("auto", "auto"), ("numba", "numba"),
-                                             ("numpy", "numpy"), (" NumPy ", "numpy"), ("NUMBA", "numba")])
+                                             ("numpy", "numpy"), (" NumPy ", "numpy"), ("NUMBA", "numba"),
+                                             ("Python", "python")])
 def test_values(monkeypatch, value, expected):
     if value is not None:
         monkeypatch.setenv(backend.ENV, value)
@@ -63,7 +65,7 @@ def test_cli_reports_a_bad_value(monkeypatch, tmp_path, capsys):
     monkeypatch.setenv(backend.ENV, "fast")
     assert main(["run", str(case), "-o", str(tmp_path / "out.nc")]) == 2
     err = capsys.readouterr().err
-    assert "DCCSS_BACKEND='fast'" in err and "auto, numba, numpy" in err and not (tmp_path / "out.nc").exists()
+    assert "DCCSS_BACKEND='fast'" in err and "auto, numba, python, numpy" in err and not (tmp_path / "out.nc").exists()
     monkeypatch.setenv(backend.ENV, "numpy")
     assert main(["run", str(case), "-o", str(tmp_path / "out.nc")]) == 0
     assert "(backend numpy)" in capsys.readouterr().out
@@ -71,13 +73,15 @@ def test_cli_reports_a_bad_value(monkeypatch, tmp_path, capsys):
 
 def test_auto_rule(monkeypatch):
     monkeypatch.setattr(backend, "numba_installed", lambda: True)
-    assert backend.choose(1000) == "numpy"  # a paper history
-    assert backend.choose(1, 212) == "numpy"  # a breakaway sweep
+    assert backend.choose(1000) == "python"  # a paper history
+    assert backend.choose(1, 212) == "python"  # a breakaway sweep
     assert backend.choose(30000) == "numba"  # a long history
     assert backend.choose(1000, 10000) == "numba"  # a sweep
-    assert backend.work(1000, 1) < backend.AUTO_THRESHOLD <= backend.work(10000, 1)
+    assert backend.work(1000, 1) < backend.AUTO_THRESHOLD <= backend.work(1000, 20)
     monkeypatch.setenv(backend.ENV, "numpy")
     assert backend.choose(30000, 10000) == "numpy"
+    monkeypatch.setenv(backend.ENV, "python")
+    assert backend.choose(30000, 10000) == "python"
     monkeypatch.setenv(backend.ENV, "numba")
     assert backend.choose(1) == "numba"
 
@@ -111,26 +115,41 @@ def test_numba_requested_without_numba_is_an_error(monkeypatch, no_numba, tmp_pa
     assert "pip install numba" in capsys.readouterr().err
 
 
-def test_auto_without_numba_warns_once_and_runs_numpy(monkeypatch, no_numba):
+def test_auto_without_numba_warns_once_and_runs_interpreted(monkeypatch, no_numba):
     excitation = Sine(0.27, 30.0, 0.2)
-    monkeypatch.setenv(backend.ENV, "numpy")
+    monkeypatch.setenv(backend.ENV, "python")
     reference = simulate(DFP1, excitation, model="stick_slip", dt=0.01)
     monkeypatch.delenv(backend.ENV)
     monkeypatch.setattr(backend, "AUTO_THRESHOLD", 0)  # every run is large
     with pytest.warns(backend.BackendWarning, match="pip install numba"):
         ds = simulate(DFP1, excitation, model="stick_slip", dt=0.01)
-    assert ds.identical(reference) and backend.last == "numpy"
+    assert ds.identical(reference) and backend.last == "python"
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # once per process
         simulate(DFP1, excitation, model="compliant", dt=0.01)
         summaries.summarize("compliant", DFP1, np.zeros((3, 2)))
 
 
-def test_auto_where_numba_fails_to_import_warns_and_runs_numpy(monkeypatch, no_numba):
+def test_auto_where_numba_fails_to_import_warns_and_runs_interpreted(monkeypatch, no_numba):
     monkeypatch.setattr(backend, "numba_installed", lambda: True)  # found, but its import fails
     monkeypatch.setattr(backend, "AUTO_THRESHOLD", 0)
     with pytest.warns(backend.BackendWarning):
-        assert backend.compiled("compliant", 10) is None
+        module, compiled = backend.kernels("compliant", 10)
+    assert not compiled and backend.last == "python"
+
+
+def test_interpreted_runs_do_not_import_numba():
+    """A paper history and a breakaway sweep run interpreted without importing numba (0.3 s a process)."""
+    import subprocess
+
+    code = ("import sys; import numpy as np; from dccss.simulation import simulate, breakaway; "
+            "from dccss.excitation import Sine; from dccss.paper.prototypes import DFP1; "
+            "simulate(DFP1, Sine(0.27, 30.0, 1.0), model='stick_slip', dt=0.001); "
+            "breakaway(DFP1, theta2_0_deg=np.arange(-10.5, 0.05, 0.1), dXg=[0.05, 0.1]); "
+            "from dccss.mechanics import backend; print(backend.last, 'numba' in sys.modules)")
+    env = {k: v for k, v in os.environ.items() if k != backend.ENV}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    assert out.stdout.split() == ["python", "False"]
 
 
 def test_small_runs_do_not_warn(no_numba):
@@ -141,7 +160,7 @@ def test_small_runs_do_not_warn(no_numba):
 
 # --- dispatch, with a stand-in for the compiled module ---------------------------------------
 class Fake:
-    """The compiled module's entry points, computed by the numpy reference; records its calls."""
+    """The kernels' entry points, computed by the numpy reference; records its calls."""
 
     HISTORY = {name: None for name in models.MODELS}
 
@@ -149,13 +168,15 @@ class Fake:
         self.calls = []
 
     def run(self, model, geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
-            stop_at_ring=False):
+            stop_at_ring=False, compiled=True):
         self.calls.append(("run", model, stop_at_ring))
+        assert compiled
         with numpy_backend():
             return runs._planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, None)
 
-    def summarize(self, model, geometry, Xg, theta2_0=0.0, **kw):
+    def summarize(self, model, geometry, Xg, theta2_0=0.0, compiled=True, **kw):
         self.calls.append(("summarize", model, kw.get("capacity")))
+        assert compiled
         with numpy_backend():
             return summaries.summarize(model, geometry, Xg, theta2_0, **kw)
 
@@ -232,11 +253,22 @@ def test_models_run_and_summarize_dispatch(fake):
     assert fake.calls == [("run", "stick_slip", False), ("summarize", "compliant", "stop")]
 
 
-def test_small_runs_stay_numpy(monkeypatch):
-    monkeypatch.setattr(backend, "numba_installed", lambda: True)
-    monkeypatch.setattr(backend, "_load", lambda: pytest.fail("the compiled module was loaded"))
-    simulate(DFP1, Sine(0.27, 30.0, 1.0), model="stick_slip", dt=0.001)  # a paper history: 1000 steps
-    assert backend.last == "numpy"
+def test_small_runs_run_interpreted(monkeypatch):
+    """A paper history runs the kernels interpreted: no compiler, and the bytes of the compiled kernels."""
+    compiled = backend._load()  # the module the dispatch uses
+    calls = []
+    original = compiled._Batch.run
+
+    def spy(self, *args, **kw):
+        calls.append(kw.get("compiled", args[-1] if len(args) > 5 else True))
+        return original(self, *args, **kw)
+
+    monkeypatch.setattr(compiled._Batch, "run", spy)
+    kw = dict(geometry=DFP1, excitation=Sine(0.27, 30.0, 1.0), model="stick_slip", dt=0.001, theta2_0=0.02)
+    ds = simulate(**kw)  # a paper history: 1000 steps
+    assert backend.last == "python" and calls == [False]
+    monkeypatch.setenv(backend.ENV, "numba")
+    assert simulate(**kw).identical(ds) and backend.last == "numba" and calls == [False, True]
 
 
 def test_a_model_without_kernels_runs_numpy(fake, monkeypatch):

@@ -1,27 +1,28 @@
-"""Which implementation runs the models: the numpy reference or the compiled (Numba) kernels.
+"""How a planar run is computed: the kernels compiled, the same kernels interpreted, or the numpy reference.
 
-The environment variable ``DCCSS_BACKEND`` selects it:
+The planar models are written once, as the kernels of ``dccss.mechanics.compiled``: functions on
+Python numbers and tuples that Numba compiles and that also run as they are, interpreted. Both
+give the same results to the last bit (the same operations in the same order; tests/test_compiled.py),
+so the choice between them is one of speed only. The environment variable ``DCCSS_BACKEND``
+selects it:
 
-* ``auto`` (the default): the compiled kernels (``dccss.mechanics.compiled``) where numba is
-  installed and the run is large enough for them to pay, the numpy reference otherwise. A run
-  is large when ``steps * (cases + STEP_OVERHEAD) >= AUTO_THRESHOLD``: the numpy reference
-  costs about 1-2 microseconds per case-step plus as much as ``STEP_OVERHEAD`` case-steps per
-  step, so this is a run the numpy reference takes 1-2 s or more over, while a process that
-  loads the cached kernels pays about 0.7 s (importing numba and loading the kernels) and one
-  that compiles them about 20 s, once: the kernels are cached on disk. Small runs (the paper's
-  1000-step histories, the breakaway sweeps, small study chunks) run on numpy, so a cold cache
-  never slows them. The choice depends on the run's size only, never on the state of the
-  cache, so the same run uses the same backend on every machine that has numba.
-* ``numba``: always the compiled kernels (an error where numba is not installed);
-* ``numpy``: always the numpy reference.
+* ``auto`` (the default): the kernels, compiled where the run is large enough for them to pay,
+  interpreted otherwise. A run of N cases over T steps is large when ``T * N >= AUTO_THRESHOLD``:
+  interpreted, the kernels take about 20 microseconds per case-step (compliant sliding) or 40-50
+  (stick-slip), so this is a run they take about half a second or more over, while a process that
+  loads the compiled kernels from the on-disk cache pays about 0.7 s (importing numba and loading
+  them) and one that compiles them about 20 s, once per machine. Small runs (the paper's
+  histories and breakaway sweeps) thus never wait for a compiler.
+* ``numba``: always compiled; ``python``: always interpreted;
+* ``numpy``: the numpy reference (``models``' step generators, ``summaries``), an independent
+  implementation kept to check the kernels; it agrees with them to about 1e-13 (numpy's
+  vectorised complex arithmetic rounds differently from scalar code).
 
-Where numba is not installed, ``auto`` runs large runs on numpy and says so once (a
-``BackendWarning``). The two backends agree to 1e-10 (tests/test_compiled.py, test_backend.py;
-about 1e-13 in practice): the backend used is logged (logger ``dccss.backend``; ``last`` holds
-the latest), not written into the datasets, whose bytes thus do not depend on it.
+The interpreted kernels do not import numba: where it is not installed, ``auto`` runs every run
+interpreted and says so once for a large one (a ``BackendWarning``).
 
-The numpy step generators (``models.steps``) stay the reference, and are what runs wherever
-per-step records are needed.
+The backend used is logged (logger ``dccss.backend``; ``last`` holds the latest: "numba",
+"python" or "numpy"), not written into the datasets.
 """
 
 from __future__ import annotations
@@ -35,13 +36,9 @@ import warnings
 import numpy as np
 
 ENV = "DCCSS_BACKEND"
-BACKENDS = ("auto", "numba", "numpy")
-#: the numpy reference's cost per step, in case-steps (measured: 0.09 ms per compliant step and
-#: 0.19 ms per stick-slip step for one case, against 1.0 and 2.2 microseconds per case-step in
-#: batches of 10 000)
-STEP_OVERHEAD = 100
-#: ``auto`` runs the compiled kernels from this many weighted case-steps on (README, Performance)
-AUTO_THRESHOLD = 1_000_000
+BACKENDS = ("auto", "numba", "python", "numpy")
+#: ``auto`` compiles the kernels from this many case-steps on (module docstring; benchmarks/README.md)
+AUTO_THRESHOLD = 20_000
 INSTALL = "pip install numba (or the package's `compiled` extra: pip install -e '.[compiled]')"
 
 log = logging.getLogger("dccss.backend")
@@ -55,7 +52,7 @@ class BackendError(ImportError):
 
 
 class BackendWarning(UserWarning):
-    """The compiled backend would run, but numba is not installed: the numpy reference runs."""
+    """The compiled kernels would run, but numba is not installed: they run interpreted."""
 
 
 def requested() -> str:
@@ -73,7 +70,7 @@ def check() -> str:
     ``numba`` where numba is not installed."""
     wanted = requested()
     if wanted == "numba" and not numba_installed():
-        raise BackendError(f"{ENV}=numba needs numba, which is not installed: {INSTALL}; or set {ENV}=numpy")
+        raise BackendError(f"{ENV}=numba needs numba, which is not installed: {INSTALL}; or set {ENV}=python")
     return wanted
 
 
@@ -85,29 +82,29 @@ def numba_installed() -> bool:
 
 
 def work(steps, cases=1) -> int:
-    """The size of a run of ``cases`` cases over ``steps`` steps, in weighted case-steps."""
-    return int(steps) * (int(cases) + STEP_OVERHEAD)
+    """The size of a run of ``cases`` cases over ``steps`` steps, in case-steps."""
+    return int(steps) * int(cases)
 
 
 def choose(steps, cases=1) -> str:
-    """'numba' or 'numpy' for a run of ``cases`` cases over ``steps`` steps (module docstring)."""
+    """'numba', 'python' or 'numpy' for a run of ``cases`` cases over ``steps`` steps (module docstring)."""
     wanted = check()
     if wanted != "auto":
         return wanted
     if work(steps, cases) < AUTO_THRESHOLD:
-        return "numpy"
+        return "python"
     if numba_installed():
         return "numba"
     _warn_once()
-    return "numpy"
+    return "python"
 
 
 def _warn_once():
     global _warned
     if not _warned:
         _warned = True
-        warnings.warn(f"numba is not installed, so large runs use the slower numpy backend: {INSTALL} for the "
-                      f"compiled one (set {ENV}=numpy to silence this)", BackendWarning, stacklevel=4)
+        warnings.warn(f"numba is not installed, so large runs run interpreted, slowly: {INSTALL} to compile "
+                      f"them (set {ENV}=python to silence this)", BackendWarning, stacklevel=4)
 
 
 def size(geometry, Xg, theta2_0=0.0):
@@ -124,23 +121,25 @@ def _load():
     return importlib.import_module("dccss.mechanics.compiled")
 
 
-def compiled(model, steps, cases=1):
-    """The compiled module if it should run ``model`` over this run, else None (numpy)."""
+def kernels(model, steps, cases=1):
+    """``(module, compiled)``: the kernels' module and whether to run them compiled, for running
+    ``model`` over this run; None where the numpy reference runs it (``numpy`` chosen, or a
+    model the kernels do not have)."""
     global last
-    last = "numpy"
-    if choose(steps, cases) == "numpy":
+    choice = choose(steps, cases)
+    module = _load() if choice != "numpy" else None
+    if module is None or model not in module.HISTORY:
+        last = "numpy"
         log.info("backend numpy: %s, %d case(s) x %d step(s)", model, cases, steps)
         return None
-    try:
-        module = _load()
-    except ImportError:
-        if requested() == "numba":
-            raise
-        _warn_once()
-        return None
-    if model not in module.HISTORY:  # a model the kernels do not have
-        log.info("backend numpy: %s has no compiled kernel", model)
-        return None
-    log.info("backend numba: %s, %d case(s) x %d step(s)", model, cases, steps)
-    last = "numba"
-    return module
+    if choice == "numba":
+        try:
+            importlib.import_module("numba")
+        except ImportError:  # found, but its import fails
+            if requested() == "numba":
+                raise
+            _warn_once()
+            choice = "python"
+    last = choice
+    log.info("backend %s: %s, %d case(s) x %d step(s)", choice, model, cases, steps)
+    return module, choice == "numba"

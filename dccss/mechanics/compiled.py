@@ -1,4 +1,5 @@
-"""Compiled (Numba) backend of the two kinematic models, for one case and for batches.
+"""The kernels of the two planar models, for one case and for batches: compiled with Numba, or the
+same functions interpreted (``compiled=False``; small runs), with the same results to the last bit.
 
 The entry points take and return what the numpy reference does:
 
@@ -62,19 +63,13 @@ from dataclasses import fields
 
 import numpy as np
 
-try:
-    import numba
-    from numba import njit, prange
-except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs numpy
-    raise ImportError("dccss.mechanics.compiled needs numba (pip install numba)") from err
-
 from . import linear, newton
 from .capacity import CAPACITY_POLICIES, case_error, mark_failures
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
 from .newton import NewtonOptions
-from .scalar import OPTIONS, compilable, jit, max_abs
+from .scalar import OPTIONS, compilable, compile_helpers, jit, max_abs
 
 compilable(*linear.SCALAR)
 solve4 = linear.solve4
@@ -481,7 +476,7 @@ def _case_constants(k, pad, centre, radius, dims):
             (radius[k, 0], radius[k, 1]), (dims[k, 0], dims[k, 1], dims[k, 2], dims[k, 3], dims[k, 4]))
 
 
-@njit(**OPTIONS)
+@jit
 def _compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
     """``models.compliant_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
     pad, centre, radius, dims = case
@@ -507,7 +502,7 @@ def _compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out
     h0 = h1 = h2 = h3 = q  # the last four converged configurations, newest last
     history = 1
     done[k] = 1
-    T = 1 if stop_at_ring and _beyond_ring(u, dims) else xg.shape[0]  # a start beyond a ring: no step
+    T = 1 if stop_at_ring and _beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
     for n in range(1, T):
         guess = _extrapolate(h0, h1, h2, h3, history)
         guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)  # Eq. 5 rows 1-3, 8, 9
@@ -540,7 +535,7 @@ def _compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out
         count_all[k] = count
 
 
-@njit(**OPTIONS)
+@jit
 def _stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
     """``models.stick_slip_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
     pad, centre, radius, dims = case
@@ -565,7 +560,7 @@ def _stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_ou
     q_previous = q_stick_previous = NAN9  # q(t_{n-2}) and q_stick(t_{n-1}), for the predictors
     started, down_previous = False, False
     done[k] = 1
-    T = 1 if stop_at_ring and _beyond_ring(u, dims) else xg.shape[0]  # a start beyond a ring: no step
+    T = 1 if stop_at_ring and _beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
     for n in range(1, T):
         down = xg[n] < xg[n - 1]  # the jammed diagonal: A-D for dX_g >= 0, B-C otherwise
         c1, c3 = (CORNER_B, CORNER_C) if down else (CORNER_A, CORNER_D)
@@ -612,7 +607,9 @@ def _stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_ou
         count_all[k] = count
 
 
-@njit(parallel=True, **OPTIONS)
+prange = range  # numba.prange once the kernels are compiled (``_kernel``)
+
+
 def _compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
     for k in prange(q0.shape[0]):
         xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
@@ -620,12 +617,31 @@ def _compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summ
                         summary_out, status_out)
 
 
-@njit(parallel=True, **OPTIONS)
 def _stick_slip_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
     for k in prange(q0.shape[0]):
         xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
         _stick_slip_case(k, xg, q0[k], _case_constants(k, pad, centre, radius, dims), flags, history_out,
                          summary_out, status_out)
+
+
+#: the compiled batch kernels, by model (``_kernel``)
+_KERNELS = {}
+
+
+def _kernel(model):
+    """numba and the compiled batch kernel of ``model``: numba is imported, the helpers registered
+    and the kernel compiled (or loaded from the on-disk cache) at the first call."""
+    try:
+        import numba
+    except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs interpreted
+        raise ImportError("the compiled kernels need numba (pip install numba)") from err
+    if model not in _KERNELS:
+        global prange
+        prange = numba.prange
+        compile_helpers()
+        function = _compliant_batch if model == "compliant" else _stick_slip_batch
+        _KERNELS[model] = numba.njit(parallel=True, **OPTIONS)(function)
+    return numba, _KERNELS[model]
 
 
 # --- Python entry points -------------------------------------------------------------------
@@ -664,14 +680,25 @@ class _Batch:
         self.fail_J = np.zeros((N, 4, 4))
         self.done = np.zeros(N, dtype=np.int64)
 
-    def run(self, model, options, normals, history_out, summary_out, stop_at_ring=False):
-        kernel = _compliant_batch if model == "compliant" else _stick_slip_batch
+    def run(self, model, options, normals, history_out, summary_out, stop_at_ring=False, compiled=True):
+        """Run every case: compiled, in parallel, or (``compiled`` False) the same functions
+        interpreted, one case after the other, on Python numbers."""
         flags = (normals == "signed", float(options.tol), int(options.max_iter), options.on_failure == "mark",
                  self.one_case, bool(stop_at_ring))
+        status_out = (self.fail, self.fail_g, self.fail_J, self.done)
+        if not compiled:
+            case = _compliant_case if model == "compliant" else _stick_slip_case
+            for k in range(self.N):
+                constants = (tuple(complex(z) for z in self.pad[k]), tuple(complex(z) for z in self.centre[k]),
+                             tuple(float(r) for r in self.radius[k]), tuple(float(d) for d in self.dims[k]))
+                xg = self.Xg[:, k if self.Xg.shape[1] > 1 else 0].tolist()
+                case(k, xg, self.q0[k].tolist(), constants, flags, history_out, summary_out, status_out)
+            return
+        numba, kernel = _kernel(model)
         # dynamic scheduling: cases cost alike, but a core may be shared
         with numba.parallel_chunksize(max(1, self.N // (16 * numba.get_num_threads()))):
             kernel(self.Xg, self.q0, self.pad, self.centre, self.radius, self.dims, flags, history_out,
-                   summary_out, (self.fail, self.fail_g, self.fail_J, self.done))
+                   summary_out, status_out)
 
     def raise_failure(self, model, geometry, options, times, history=None):
         """Raise the reference's error for the first failure it would meet, if any.
@@ -753,14 +780,14 @@ def _no_history(model):
     return tuple(np.empty((0, 0) + shape, dtype) for shape, dtype in HISTORY[model].values())
 
 
-def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring) -> dict:
+def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled) -> dict:
     _check(model, normals, options)
     batch = _Batch(geometry, Xg, theta2_0)
     T, N, shape = batch.T, batch.N, batch.shape
     if stop_at_ring and not batch.one_case:
         raise ValueError("stop_at_ring runs one case: geometry, Xg[1:] and theta2_0 must be scalars")
     arrays = {key: np.empty((T, N) + tail, dtype) for key, (tail, dtype) in HISTORY[model].items()}
-    batch.run(model, options, normals, tuple(arrays.values()), _no_summary(), stop_at_ring)
+    batch.run(model, options, normals, tuple(arrays.values()), _no_summary(), stop_at_ring, compiled)
     steps = int(batch.done.min()) if batch.one_case else T
 
     def history():
@@ -774,7 +801,7 @@ def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_rin
 
 
 def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
-              stop_at_ring=False) -> dict:
+              stop_at_ring=False, compiled=True) -> dict:
     """Compliant sliding history, as ``dccss.mechanics.models.compliant``: ``q`` (T, ..., 9);
     ``newton_iterations``, ``residual`` (T, ...); ``local``, ``point``, ``normal`` (T, ..., 4)
     complex; ``Rx3``.
@@ -782,16 +809,17 @@ def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOpt
     ``stop_at_ring`` (one case): end the history at the first step where the pad has passed a
     retaining ring, before solving further (``simulation.simulate``'s capacity "stop" and
     "error"). A ConvergenceError of one case carries the history up to the last converged
-    step as ``err.history``."""
-    return _history("compliant", geometry, Xg, theta2_0, normals, options, times, stop_at_ring)
+    step as ``err.history``. ``compiled`` False runs the same functions interpreted (small runs:
+    ``backend``), with the same results to the last bit."""
+    return _history("compliant", geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled)
 
 
 def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
-               stop_at_ring=False) -> dict:
+               stop_at_ring=False, compiled=True) -> dict:
     """Stick-slip history, as ``dccss.mechanics.models.stick_slip``: ``q``, ``q_stick`` (T, ..., 9),
     ``diagonal_BC``, ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
-    ``stop_at_ring`` and errors as for ``compliant``."""
-    return _history("stick_slip", geometry, Xg, theta2_0, normals, options, times, stop_at_ring)
+    ``stop_at_ring``, ``compiled`` and errors as for ``compliant``."""
+    return _history("stick_slip", geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled)
 
 
 def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
@@ -801,10 +829,11 @@ def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
 
 
 def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, normals="signed",
-              options=NewtonOptions(), times=None) -> dict:
+              options=NewtonOptions(), times=None, compiled=True) -> dict:
     """The per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes and NaN / flag
     conventions, the same ``capacity`` policies), reduced inside the compiled loop: memory
-    O(cases). ``progress(n, N)`` is called once, when all N steps are done."""
+    O(cases). ``progress(n, N)`` is called once, when all N steps are done; ``compiled`` as for
+    ``compliant``."""
 
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
@@ -814,7 +843,7 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
         one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
         out = summarize(model, one, Xg.reshape(Xg.shape[0]), float(np.ravel(theta2_0)[0]), capacity=capacity,
-                        progress=progress, normals=normals, options=options, times=times)
+                        progress=progress, normals=normals, options=options, times=times, compiled=compiled)
         return {k: np.reshape(v, shape) for k, v in out.items()}
     batch = _Batch(geometry, Xg, theta2_0)
     T, N, shape = batch.T, batch.N, batch.shape
@@ -823,7 +852,8 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     acc[:, STOPPED] = 0.0
     count = np.zeros((N, N_COUNT), dtype=np.int64)
     count[:, REACHED_STEP] = -1
-    batch.run(model, options, normals, _no_history(model), (now, acc, count, CAPACITY_POLICIES.index(capacity)))
+    batch.run(model, options, normals, _no_history(model), (now, acc, count, CAPACITY_POLICIES.index(capacity)),
+              compiled=compiled)
     if capacity == "error" and options.on_failure != "mark":
         _raise_capacity(batch, acc, count, shape)
     batch.raise_failure(model, geometry, options, times)

@@ -294,12 +294,13 @@ def model(name) -> Model:
 
 def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:
     """The whole history of model ``name`` (arrays, time first; see ``collect``). Keywords as
-    for the step generators. Large runs go to the compiled kernels (``backend``: DCCSS_BACKEND),
-    which give the same histories."""
+    for the step generators. The kernels run it, compiled or interpreted (``backend``:
+    DCCSS_BACKEND); the step generators are the numpy reference."""
     entry = model(name)
-    kernels = backend.compiled(name, *backend.size(geometry, Xg, theta2_0))
-    if kernels is not None:
-        return kernels.run(name, geometry, Xg, theta2_0, **kw)
+    found = backend.kernels(name, *backend.size(geometry, Xg, theta2_0))
+    if found is not None:
+        kernels, compiled = found
+        return kernels.run(name, geometry, Xg, theta2_0, compiled=compiled, **kw)
     return collect(entry.steps(geometry, Xg, theta2_0, **kw))
 
 

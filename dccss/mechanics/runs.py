@@ -102,7 +102,7 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
     """One case: ``model`` under X_g (m; (T,) planar, (T, 2) spatial), from the compatible start at
     theta2_0 (rad; in the vertical plane of ``azimuth`` (rad) in space), with the run policies
     (module docstring). ``times`` (s) are quoted in errors and events; ``progress(n, N)`` is called
-    after each step (once, at the end, on the compiled kernels)."""
+    after each step (once, at the end, on the kernels)."""
     models.model(model)  # a ValueError names the known models
     check_policies(capacity, on_failure)
     if np.ndim(geometry.L) != 0:
@@ -159,13 +159,14 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
 def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, progress):
     """The planar history (``models.collect``); with ``stop_at_ring`` it ends at the first step
     where the pad has passed a retaining ring. A ConvergenceError carries the history up to the
-    last converged step as ``err.history``. A long history runs on the compiled kernels
+    last converged step as ``err.history``. The kernels run it, compiled or interpreted
     (``backend``; ``progress`` is then called once, at the end)."""
-    kernels, out = backend.compiled(model, len(Xg) - 1), None
-    if kernels is not None:
+    found, out = backend.kernels(model, len(Xg) - 1), None
+    if found is not None:
+        kernels, compiled = found
         try:
             out = kernels.run(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
-                              stop_at_ring=stop_at_ring)
+                              stop_at_ring=stop_at_ring, compiled=compiled)
         except ConvergenceError as err:
             out = getattr(err, "history", None)
             raise

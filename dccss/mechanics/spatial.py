@@ -62,7 +62,7 @@ from numba import njit
 
 from .models import REGISTRY
 from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
-from .scalar import OPTIONS, jit, max_abs
+from .scalar import OPTIONS, compile_helpers, jit, max_abs
 
 Z = (0.0, 0.0, 1.0)
 #: the section's rim points, in the order of the step's rows: lower trailing, lower leading,
@@ -821,3 +821,6 @@ def summary(history, geometry) -> dict:
         out["sticking_rotation_max"] = np.degrees(turn.max())
         out["rise_stick_max"] = np.nanmax(history["stick_R3"][1:, 2] - device(geometry).rest3) if steps > 1 else np.nan
     return out
+
+
+compile_helpers()  # the spatial models always run compiled

@@ -66,13 +66,15 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     that reaches a ring: a later solver failure of that case is not one) or "error" (a case
     that reaches a ring is marked failed at that time with ``on_failure="mark"``; otherwise a
     CapacityError names its batch index). ``progress(n, N)`` is called after each step (once, at
-    the end, when the compiled kernels run it: ``dccss.mechanics.backend``)."""
+    the end, when the kernels run it: ``dccss.mechanics.backend``)."""
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     Xg = np.asarray(Xg, dtype=float)
-    kernels = backend.compiled(model, *backend.size(geometry, Xg, theta2_0))
-    if kernels is not None:  # a large sweep: the compiled kernels, same summaries (``backend``)
-        return kernels.summarize(model, geometry, Xg, theta2_0, capacity=capacity, progress=progress, **kw)
+    found = backend.kernels(model, *backend.size(geometry, Xg, theta2_0))
+    if found is not None:  # the kernels, compiled or interpreted (``backend``)
+        kernels, compiled = found
+        return kernels.summarize(model, geometry, Xg, theta2_0, capacity=capacity, progress=progress,
+                                 compiled=compiled, **kw)
     shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
     if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
         one = Geometry(**{f.name: float(np.ravel(getattr(geometry, f.name))[0]) for f in fields(geometry)})
