@@ -53,9 +53,10 @@ def test_batch_rounds_as_the_scalar_solve():
 def test_compiled_rounds_as_the_interpreted_solve():
     from numba import njit
 
-    from dccss.mechanics.scalar import compilable
+    from dccss.mechanics.scalar import compilable, compile_helpers
 
     compilable(*linear.SCALAR)
+    compile_helpers()  # registered with Numba, whatever ran before
     compiled = njit(lambda A, b: linear.solve4(A, b))
     A, b = systems(50)
     for Ai, bi in zip(A, b):

@@ -36,6 +36,7 @@ def eliminate(pivot_row, inverse, row, c):
 def solve4(A, b):
     """Solve A x = b (4 x 4; A a tuple of rows, b a tuple): (ok, x); ok is False when a pivot is
     exactly zero (x is then b)."""
+    unsolved = (b[0], b[1], b[2], b[3])  # returned with ok False
     r0 = (A[0][0], A[0][1], A[0][2], A[0][3], b[0])
     r1 = (A[1][0], A[1][1], A[1][2], A[1][3], b[1])
     r2 = (A[2][0], A[2][1], A[2][2], A[2][3], b[2])
@@ -48,7 +49,7 @@ def solve4(A, b):
     elif p == 3:
         r0, r3 = r3, r0
     if r0[0] == 0.0:
-        return False, (b[0], b[1], b[2], b[3])
+        return False, unsolved
     inverse = 1.0 / r0[0]
     r1, r2, r3 = eliminate(r0, inverse, r1, 0), eliminate(r0, inverse, r2, 0), eliminate(r0, inverse, r3, 0)
     p = pivot((r1[1], r2[1], r3[1]))
@@ -57,16 +58,16 @@ def solve4(A, b):
     elif p == 2:
         r1, r3 = r3, r1
     if r1[1] == 0.0:
-        return False, (b[0], b[1], b[2], b[3])
+        return False, unsolved
     inverse = 1.0 / r1[1]
     r2, r3 = eliminate(r1, inverse, r2, 1), eliminate(r1, inverse, r3, 1)
     if pivot((r2[2], r3[2])) == 1:
         r2, r3 = r3, r2
     if r2[2] == 0.0:
-        return False, (b[0], b[1], b[2], b[3])
+        return False, unsolved
     r3 = eliminate(r2, 1.0 / r2[2], r3, 2)
     if r3[3] == 0.0:
-        return False, (b[0], b[1], b[2], b[3])
+        return False, unsolved
     x3 = r3[4] / r3[3]
     x2 = (r2[4] - r2[3] * x3) / r2[2]
     x1 = (r1[4] - r1[2] * x2 - r1[3] * x3) / r1[1]
