@@ -10,6 +10,7 @@ the kernel cache warm; the first run on a machine compiles the kernels (about 30
 
 import inspect
 import re
+from functools import partial
 
 import numpy as np
 import pytest
@@ -172,7 +173,7 @@ def error_of(call):
 
 @pytest.mark.parametrize("geometry", [GRID, WIDE], ids=["batch", "one case"])
 def test_convergence_error_same_message(geometry):
-    mine = error_of(lambda: compiled.stick_slip(geometry, GRID_XG, times=GRID_T))
+    mine = error_of(lambda: compiled.run("stick_slip", geometry, GRID_XG, times=GRID_T))
     ref = error_of(lambda: models.stick_slip(geometry, GRID_XG, times=GRID_T))
     assert type(mine) is type(ref) and str(mine) == str(ref)
     mine = error_of(lambda: compiled.summarize("stick_slip", geometry, GRID_XG, times=GRID_T))
@@ -180,7 +181,7 @@ def test_convergence_error_same_message(geometry):
 
 
 def test_convergence_error_keeps_history_of_one_case():
-    err = error_of(lambda: compiled.stick_slip(WIDE, GRID_XG, times=GRID_T))
+    err = error_of(lambda: compiled.run("stick_slip", WIDE, GRID_XG, times=GRID_T))
     n = int(str(err).split("step ")[1].split(",")[0])
     assert err.history["q"].shape == (n, 9) and np.isfinite(err.history["q"]).all()
 
@@ -190,7 +191,7 @@ def test_tolerance_below_round_off_fails_alike():
     t = np.linspace(0.0, 1.0, 11)
     Xg = 0.27 * np.sin(30.0 * t)
     options = newton.NewtonOptions(tol=1e-30, max_iter=3)
-    mine = error_of(lambda: compiled.compliant(GRID, Xg, options=options, times=t))
+    mine = error_of(lambda: compiled.run("compliant", GRID, Xg, options=options, times=t))
     ref = error_of(lambda: models.compliant(GRID, Xg, options=options, times=t))
 
     def masked(err):
@@ -210,7 +211,7 @@ def test_singular_jacobian_one_case(options):
     """The one-case reference raises SingularJacobianError under both failure policies."""
     g, theta2_0 = singular_start()
     Xg = np.array([0.0, 0.001, 0.002])
-    mine = error_of(lambda: compiled.stick_slip(g, Xg, theta2_0, options=options, times=Xg))
+    mine = error_of(lambda: compiled.run("stick_slip", g, Xg, theta2_0, options=options, times=Xg))
     ref = error_of(lambda: models.stick_slip(g, Xg, theta2_0, options=options, times=Xg))
     assert isinstance(ref, newton.SingularJacobianError)
     assert type(mine) is type(ref) and str(mine) == str(ref)
@@ -223,10 +224,10 @@ def test_singular_jacobian_batch():
     g, theta2_0 = singular_start()
     Xg = np.array([0.0, 0.001, 0.002])[:, None] * np.array([1.0, 1.0, -1.0])
     start = np.array([0.0, theta2_0, theta2_0])
-    h = compiled.stick_slip(g, Xg, start, options=MARK)
+    h = compiled.run("stick_slip", g, Xg, start, options=MARK)
     assert np.isnan(h["q"][1:, 1, 3:6]).all() and np.isfinite(h["q"][:, [0, 2]]).all()  # the pad of case 1
     assert h["newton_iterations_stick"][1, 1] == 0 and np.isnan(h["residual_stick"][1, 1])
-    err = error_of(lambda: compiled.stick_slip(g, Xg, start))
+    err = error_of(lambda: compiled.run("stick_slip", g, Xg, start))
     assert isinstance(err, newton.SingularJacobianError) and "batch index (1,), step 1" in str(err)
 
 
@@ -267,7 +268,7 @@ def test_capacity_policies(model, capacity):
 
 def test_bad_input_rejected_alike():
     g = Geometry.from_degrees(**TABLE1["DFP1"])
-    for call in (compiled.compliant, models.compliant):
+    for call in (partial(compiled.run, "compliant"), models.compliant):
         with pytest.raises(ValueError, match="normals must be one of"):
             call(g, np.array([0.0, 0.01]), normals="mirrored")
         with pytest.raises(ValueError, match="at least two step values"):

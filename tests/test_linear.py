@@ -1,6 +1,9 @@
 """The written-out 4 x 4 solve (mechanics.linear): it solves, it finds the singular systems LAPACK
 finds, and the batched and compiled forms round as the scalar one, bit for bit."""
 
+import shutil
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -62,3 +65,17 @@ def test_compiled_rounds_as_the_interpreted_solve():
     for Ai, bi in zip(A, b):
         args = (tuple(tuple(r) for r in Ai.tolist()), tuple(bi.tolist()))
         assert compiled(*args) == linear.solve4(*args)
+
+
+def test_the_kernel_cache_is_named_by_every_mechanics_source(tmp_path):
+    """Numba would keep a kernel compiled from an old helper (it watches the kernel's own file only):
+    the cache folder's name changes with any module of the mechanics."""
+    from dccss.mechanics import scalar
+
+    copy = tmp_path / "mechanics"
+    shutil.copytree(Path(scalar.__file__).parent, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    before = scalar.source_digest(copy)
+    assert before == scalar.source_digest() and scalar.cache_folder("/cache").name == f"kernels-{before}"
+    with open(copy / "linear.py", "a") as f:
+        f.write("\n# a changed helper\n")
+    assert scalar.source_digest(copy) != before

@@ -1,11 +1,14 @@
 """A model is a registry entry: one registered alone runs through ``simulate``, a sweep and the
-study plots, with its title and style from the entry, and nothing else to edit."""
+study plots, with its title and style from the entry, and nothing else to edit; with planar kernels
+in its entry it runs on them, interpreted and compiled, as on its numpy reference."""
+
+import dataclasses
 
 import numpy as np
 import pytest
 
 from dccss.excitation import Sine
-from dccss.mechanics import models, summaries
+from dccss.mechanics import backend, compiled, models, registry, scalar, summaries
 from dccss.mechanics.models import Model, Step
 from dccss.paper.prototypes import DFP1
 from dccss.simulation import simulate
@@ -23,10 +26,56 @@ RIGID = Model("rigid", "Rigid Pad", rigid_steps, Step, lambda history, geometry:
               ("newton_iterations",), line=dict(color="tab:green", ls="-.", lw=1.5), marker=dict(marker="x"))
 
 
+@scalar.jit
+def rigid_case(k, xg, q0, constants, flags, history_out, summary_out, status_out):
+    """``rigid_steps`` as a planar kernel (``registry.PlanarKernels``): RB1, the pad and RB3 carried
+    by X_g from the compatible start at theta^2 = 0."""
+    pad, centre, radius, dims = constants
+    fail, fail_g, fail_J, done = status_out
+    hq, hits, hres = history_out
+    now, acc_all, count_all, capacity = summary_out
+    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
+    acc = acc_all[k].copy() if summarise else np.empty(0)
+    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    for n in range(len(xg)):
+        q = (xg[n], q0[1], q0[2], xg[n] + (q0[3] - q0[0]), q0[4], q0[5], xg[n] + (q0[6] - q0[0]), q0[7], q0[8])
+        if record:
+            for i in range(9):
+                hq[n, k, i] = q[i]
+            hits[n, k], hres[n, k] = 0, 0.0
+        if summarise:
+            u = compiled.plate_positions(compiled.frames(q), pad)
+            compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius, dims, 0,
+                                    capacity)
+        done[k] = n + 1
+    if summarise:
+        acc_all[k] = acc
+        count_all[k] = count
+
+
+def rigid_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
+    for k in scalar.prange(q0.shape[0]):
+        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
+        rigid_case(k, xg, q0[k], compiled.case_constants(k, pad, centre, radius, dims), flags, history_out,
+                   summary_out, status_out)
+
+
+RIGID_KERNELS = registry.PlanarKernels(
+    rigid_case, rigid_batch,
+    {"q": ((9,), float), "newton_iterations": ((), np.int64), "residual": ((), float)}, {}, None)
+
+
 @pytest.fixture
 def rigid(monkeypatch):
     monkeypatch.setitem(models.REGISTRY, "rigid", RIGID)
     return RIGID
+
+
+@pytest.fixture
+def rigid_with_kernels(monkeypatch):
+    entry = dataclasses.replace(RIGID, planar=RIGID_KERNELS)
+    monkeypatch.setitem(models.REGISTRY, "rigid", entry)
+    return entry
 
 
 def test_a_registered_model_runs_through_simulate(rigid):
@@ -53,3 +102,32 @@ def test_a_registered_model_runs_through_a_sweep_and_the_plots(rigid):
 def test_unregistered_models_are_refused_with_the_registered_ones():
     with pytest.raises(ValueError, match=r"model must be one of \('compliant', 'stick_slip'\), got 'rigid'"):
         simulate(DFP1, Sine(0.1, 6.0, 0.5), model="rigid", dt=0.01)
+
+
+def _on(monkeypatch, name, call):
+    monkeypatch.setenv(backend.ENV, name)
+    out = call()
+    assert backend.last == name
+    return out
+
+
+def _kernels_agree_with_the_reference(monkeypatch, name):
+    run = lambda: simulate(DFP1, Sine(0.1, 6.0, 0.5), model="rigid", dt=0.01)  # noqa: E731
+    reference, ds = _on(monkeypatch, "numpy", run), _on(monkeypatch, name, run)
+    for key in ("theta2", "Rx2", "Ry2", "Rx3", "Ry3", "rise", "clearance_1", "clearance_3"):
+        np.testing.assert_allclose(ds[key].values, reference[key].values, rtol=0, atol=1e-15, err_msg=key)
+    Xg = np.stack([np.linspace(0.0, a, 11) for a in (0.05, 0.1, 0.25)], axis=-1)
+    sweep = lambda: summaries.summarize("rigid", DFP1, Xg, capacity="continue")  # noqa: E731
+    reference, out = _on(monkeypatch, "numpy", sweep), _on(monkeypatch, name, sweep)
+    assert out.keys() == reference.keys()
+    for key in out:
+        np.testing.assert_allclose(out[key], reference[key], rtol=0, atol=1e-15, err_msg=key)
+
+
+def test_a_registered_model_with_kernels_runs_on_them_interpreted(rigid_with_kernels, monkeypatch):
+    _kernels_agree_with_the_reference(monkeypatch, "python")
+
+
+@pytest.mark.slow
+def test_a_registered_model_with_kernels_runs_on_them_compiled(rigid_with_kernels, monkeypatch):
+    _kernels_agree_with_the_reference(monkeypatch, "numba")

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from dccss.mechanics import models, spatial
+from dccss.mechanics import models, registry, spatial
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import ConvergenceError, NewtonOptions
 from dccss.paper.prototypes import DFP1, DFP2, TABLE1
@@ -13,7 +13,7 @@ from dccss.paper.prototypes import DFP1, DFP2, TABLE1
 #: unequal radii and caps: no symmetry hides a wrong sign
 UNEQUAL = Geometry.from_degrees(**{**TABLE1["DFP1"], "R3": 2.2, "alpha3": 9.0, "alpha23": 5.0, "alpha21": 7.0})
 DEVICES = {"DFP1": DFP1, "DFP2": DFP2, "unequal": UNEQUAL}
-MODELS = spatial.SPATIAL_MODELS
+MODELS = registry.names(spatial.in_space)
 
 
 def sine(dt=0.01, amplitude=0.2, period=1.0, duration=1.0):

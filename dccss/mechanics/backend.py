@@ -35,6 +35,8 @@ import warnings
 
 import numpy as np
 
+from . import registry
+
 ENV = "DCCSS_BACKEND"
 BACKENDS = ("auto", "numba", "python", "numpy")
 #: ``auto`` compiles the kernels from this many case-steps on (module docstring; benchmarks/README.md)
@@ -128,7 +130,7 @@ def kernels(model, steps, cases=1):
     global last
     choice = choose(steps, cases)
     module = _load() if choice != "numpy" else None
-    if module is None or model not in module.HISTORY:
+    if module is None or registry.model(model).planar is None:
         last = "numpy"
         log.info("backend numpy: %s, %d case(s) x %d step(s)", model, cases, steps)
         return None

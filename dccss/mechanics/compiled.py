@@ -1,22 +1,24 @@
-"""The kernels of the two planar models, for one case and for batches: compiled with Numba, or the
-same functions interpreted (``compiled=False``; small runs), with the same results to the last bit.
+"""The planar models' kernels: the scalar helpers every model's steps are written with, and the
+driver that runs a model's kernels (its registry entry's ``PlanarKernels``; the paper's two are in
+``models``) for one case or a batch: compiled with Numba, or the same functions interpreted
+(``compiled=False``; small runs), with the same results to the last bit.
 
-The entry points take and return what the numpy reference does:
+The entry points take a model's name and return what the numpy reference does:
 
-* ``compliant``, ``stick_slip`` and ``run``: the histories of ``dccss.mechanics.models`` (same keys,
-  shapes, dtypes; the same ConvergenceError / SingularJacobianError messages);
+* ``run``: the histories of ``dccss.mechanics.models`` (same keys, shapes, dtypes; the same
+  ConvergenceError / SingularJacobianError messages);
 * ``summarize``: the per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes, NaN and
   flag conventions, capacity policies), reduced on the fly inside the compiled loop: memory
   O(cases), no (T, N, 9) arrays.
 
-The algorithm is the reference's, row for row: the same constraint rows (``constraints``: the
-tangency rows of Eqs. 6-11, the pin rows of Eq. 32, the slip rows of Eq. 37), the prescribed
-rows set first and Newton on the contact rows over the free coordinates (``newton``) with the
-same written-out 4 x 4 solve (``linear.solve4``), the same test max|g| <= tol and iteration
-cap, the same predictors (``models._extrapolate``'s cubic for compliant sliding; the previous
-sticking and slipping increments of ``stick_slip_steps``), the same theta2 wrapping, contact
-projection (signed or unsigned normals), jammed diagonal (A-D, or B-C when X_g decreases) and
-slip set built from the end of sticking (``slip_set``).
+The algorithm (the helpers here, the steps in ``models``) is the reference's, row for row: the
+same constraint rows (``constraints``: the tangency rows of Eqs. 6-11, the pin rows of Eq. 32,
+the slip rows of Eq. 37), the prescribed rows set first and Newton on the contact rows over the
+free coordinates (``newton``) with the same written-out 4 x 4 solve (``linear.solve4``), the same
+test max|g| <= tol and iteration cap, the same predictors (``models._extrapolate``'s cubic for
+compliant sliding; the previous sticking and slipping increments of ``stick_slip_steps``), the
+same theta2 wrapping, contact projection (signed or unsigned normals), jammed diagonal (A-D, or
+B-C when X_g decreases) and slip set built from the end of sticking (``slip_set``).
 
 Layout
 ------
@@ -50,10 +52,10 @@ cases together), with the reference's message builders.
 
 Failed cases follow the reference's two paths: the one-case path (geometry, X_g[1:] and
 theta2(t_0) all scalars; also a batch of one in ``summarize``) and the batch path differ in
-what a failed case reports afterwards (``_solve``).
+what a failed case reports afterwards (``solve``).
 
-The kernels compile on first use and are cached on disk (``cache=True``: the ``__pycache__``
-folder beside this file, or ``NUMBA_CACHE_DIR``); other processes load them from there.
+The kernels compile on first use and are cached on disk (``scalar.kernel``: a folder named by a
+digest of the mechanics' sources); other processes load them from there.
 """
 
 from __future__ import annotations
@@ -63,13 +65,12 @@ from dataclasses import fields
 
 import numpy as np
 
-from . import linear, newton
+from . import linear, newton, registry, scalar
 from .capacity import CAPACITY_POLICIES, case_error, mark_failures
-from .constraints import Compliant, Slipping, Sticking, diagonal
 from .geometry import Geometry
 from .kinematics import CORNERS, NORMALS, RB3, all_corners, start
 from .newton import NewtonOptions
-from .scalar import OPTIONS, compilable, compile_helpers, jit, max_abs
+from .scalar import compilable, jit, max_abs
 
 compilable(*linear.SCALAR)
 solve4 = linear.solve4
@@ -102,13 +103,13 @@ NAN = np.nan
 
 # --- configurations as 9-tuples (Eq. 4) ----------------------------------------------------
 @jit
-def _add(a, b):
+def add(a, b):
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3], a[4] + b[4], a[5] + b[5], a[6] + b[6],
             a[7] + b[7], a[8] + b[8])
 
 
 @jit
-def _sub(a, b):
+def sub(a, b):
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2], a[3] - b[3], a[4] - b[4], a[5] - b[5], a[6] - b[6],
             a[7] - b[7], a[8] - b[8])
 
@@ -130,26 +131,26 @@ NAN9 = (NAN,) * 9
 
 
 @jit
-def _wrapped(q, F):
+def wrapped(q, F):
     """q with theta2 in (-pi, pi] (``models._wrapped``) and its frames ``F``."""
     if abs(q[5]) <= np.pi:
         return q, F
     theta2 = q[5] - TWO_PI * np.rint(q[5] / TWO_PI)
     q = (q[0], q[1], q[2], q[3], q[4], theta2, q[6], q[7], q[8])
-    return q, _frames(q)
+    return q, frames(q)
 
 
 @jit
-def _extrapolate(h0, h1, h2, h3, count):
+def extrapolate(h0, h1, h2, h3, count):
     """The cubic through the last ``count`` converged configurations h0..h3 (newest last;
     lower orders at the start): ``models._extrapolate``, same weights and order of sums."""
     if count == 1:
         return h3
     if count == 2:
-        return _add(_scale(-1.0, h2), _scale(2.0, h3))
+        return add(_scale(-1.0, h2), _scale(2.0, h3))
     if count == 3:
-        return _add(_add(h1, _scale(-3.0, h2)), _scale(3.0, h3))
-    return _add(_add(_add(_scale(-1.0, h0), _scale(4.0, h1)), _scale(-6.0, h2)), _scale(4.0, h3))
+        return add(add(h1, _scale(-3.0, h2)), _scale(3.0, h3))
+    return add(add(add(_scale(-1.0, h0), _scale(4.0, h1)), _scale(-6.0, h2)), _scale(4.0, h3))
 
 
 # --- planar kinematics (kinematics.py) -----------------------------------------------------
@@ -185,25 +186,25 @@ def _perp(z):
 
 
 @jit
-def _frames(q):
+def frames(q):
     """R^1, e^1, R^2, e^2, R^3, e^3 of a configuration (``kinematics.frames``)."""
     return (complex(q[0], q[1]), _expi(q[2]), complex(q[3], q[4]), _expi(q[5]),
             complex(q[6], q[7]), _expi(q[8]))
 
 
 @jit
-def _local(R2, e2, u2, Rj, ej):
+def local(R2, e2, u2, Rj, ej):
     """A pad corner's position in its plate's frame (``kinematics.local``)."""
     d = R2 + e2 * u2 - Rj
     return d if _is_unit(ej) else d * ej.conjugate()
 
 
 @jit
-def _locals(F, pad):
-    """Plate-frame positions of A, B (on RB1) and C, D (on RB3); F = _frames(q)."""
+def plate_positions(F, pad):
+    """Plate-frame positions of A, B (on RB1) and C, D (on RB3); F = frames(q)."""
     R1, e1, R2, e2, R3, e3 = F
-    return (_local(R2, e2, pad[0], R1, e1), _local(R2, e2, pad[1], R1, e1),
-            _local(R2, e2, pad[2], R3, e3), _local(R2, e2, pad[3], R3, e3))
+    return (local(R2, e2, pad[0], R1, e1), local(R2, e2, pad[1], R1, e1),
+            local(R2, e2, pad[2], R3, e3), local(R2, e2, pad[3], R3, e3))
 
 
 @jit
@@ -221,7 +222,7 @@ def _contact(u, centre, radius, side, signed):
 
 
 @jit
-def _contacts(u, centre, radius, signed):
+def contacts(u, centre, radius, signed):
     """Contact points, normals and centre distances of A, B, C, D."""
     pA, nA, aA = _contact(u[0], centre[0], radius[0], SIDE[0], signed)
     pB, nB, aB = _contact(u[1], centre[0], radius[0], SIDE[1], signed)
@@ -254,7 +255,7 @@ def _pin(R2, e2, Rj, ej, u2, point):
 @jit
 def _rows(kind, F, cset):
     """Contact rows g (4-tuple) and their Jacobian J (4 rows) on the free coordinates, at the
-    configuration whose frames are F (``_frames``).
+    configuration whose frames are F (``frames``).
 
     ``cset`` = (u2, points, normals, n12, k1, k3): the corners of the rows (pad frame), their
     contact points and normals (plate frames; the pinned points when sticking) and, when
@@ -298,7 +299,7 @@ def _step(kind, q, dq):
 def _newton(kind, q, cset, tol, max_iter):
     """Newton-Raphson on the contact rows from q (prescribed coordinates set). Returns
     (status, updates taken, max|g| at the last evaluation, q, g, J, frames of q)."""
-    F = _frames(q)
+    F = frames(q)
     g, J = _rows(kind, F, cset)
     it = 0
     while True:
@@ -312,12 +313,12 @@ def _newton(kind, q, cset, tol, max_iter):
             return SINGULAR, it, norm, q, g, J, F
         q = _step(kind, q, dq)
         it += 1
-        F = _frames(q)
+        F = frames(q)
         g, J = _rows(kind, F, cset)
 
 
 @jit
-def _solve(kind, q, cset, tol, max_iter, mark, one_case):
+def solve(kind, q, cset, tol, max_iter, mark, one_case):
     """``newton.solve`` on one case, with the reference's bookkeeping of failed cases.
 
     A case that failed earlier (NaN in q) is not solved: the batch path reports 0 updates and
@@ -330,7 +331,7 @@ def _solve(kind, q, cset, tol, max_iter, mark, one_case):
     if _has_nan(q):
         if one_case:
             q = NAN9
-        F = _frames(q)
+        F = frames(q)
         g, J = _rows(kind, F, cset)
         return FAILED, max_iter if one_case else 0, NAN, q, g, J, F
     status, its, norm, q, g, J, F = _newton(kind, q, cset, tol, max_iter)
@@ -342,16 +343,16 @@ def _solve(kind, q, cset, tol, max_iter, mark, one_case):
         norm = NAN
     else:
         its = max_iter
-    return FAILED, its, norm, NAN9, g, J, _frames(NAN9)
+    return FAILED, its, norm, NAN9, g, J, frames(NAN9)
 
 
 @jit
-def _fatal(status):
+def fatal(status):
     return status == NOT_CONVERGED or status == SINGULAR
 
 
 @jit
-def _record_failure(fail, fail_g, fail_J, k, n, phase, its, status, g, J):
+def record_failure(fail, fail_g, fail_J, k, n, phase, its, status, g, J):
     fail[k, 0], fail[k, 1], fail[k, 2], fail[k, 3] = n, phase, its, status
     for i in range(4):
         fail_g[k, i] = g[i]
@@ -361,12 +362,12 @@ def _record_failure(fail, fail_g, fail_J, k, n, phase, its, status, g, J):
 
 # --- the sets of a step (models.py) --------------------------------------------------------
 @jit
-def _slip_set(F, pad, centre, radius, dims, c1, c3, signed):
+def slip_set(F, pad, centre, radius, dims, c1, c3, signed):
     """The slip set (``models.slip_set``) of the diagonal c1 (on RB1), c3 (on RB3) from the
     end of sticking (frames F): the set's data and R_y^3 of Eq. 41."""
     R1, e1, R2, e2, R3, e3 = F
-    p1, n1, _ = _contact(_local(R2, e2, pad[c1], R1, e1), centre[0], radius[0], SIDE[c1], signed)
-    p3, n3, _ = _contact(_local(R2, e2, pad[c3], R3, e3), centre[1], radius[1], SIDE[c3], signed)
+    p1, n1, _ = _contact(local(R2, e2, pad[c1], R1, e1), centre[0], radius[0], SIDE[c1], signed)
+    p3, n3, _ = _contact(local(R2, e2, pad[c3], R3, e3), centre[1], radius[1], SIDE[c3], signed)
     C1 = R1 + _turn(e1, centre[0])
     C3 = R3 + _turn(e3, centre[1])
     d = C3 - C1
@@ -414,7 +415,7 @@ def _nanmin(a, b):
 
 
 @jit
-def _summarise_step(acc, count, n, now, q, u, distance, radius, dims, its, capacity):
+def summarise_step(acc, count, n, now, q, u, distance, radius, dims, its, capacity):
     """Fold step n (configuration q, corner positions u and their distances to the circle
     centres) into a case's summaries ``acc``, ``count``; the stick-slip entries are folded by
     the caller. Once the pad has reached a ring under a capacity policy other than "continue"
@@ -447,7 +448,7 @@ def _summarise_step(acc, count, n, now, q, u, distance, radius, dims, its, capac
 
 
 @jit
-def _summarise_stick(acc, q_stick, theta2_previous, dims):
+def summarise_stick(acc, q_stick, theta2_previous, dims):
     """The stick-slip entries: rotation within the sticking phase and RB3's rise at its end."""
     if acc[STOPPED] == 1.0:
         return
@@ -456,7 +457,7 @@ def _summarise_stick(acc, q_stick, theta2_previous, dims):
 
 
 @jit
-def _beyond_ring(u, dims):
+def beyond_ring(u, dims):
     """The pad has passed a retaining ring (a clearance < 0, as ``simulation.simulate``)."""
     gap1 = dims[RING1] - _nanmax(abs(u[0].real), abs(u[1].real))
     gap3 = dims[RING3] - _nanmax(abs(u[2].real), abs(u[3].real))
@@ -464,184 +465,16 @@ def _beyond_ring(u, dims):
 
 
 @jit
-def _distances(u, centre):
+def distances(u, centre):
     return (abs(u[0] - centre[0]), abs(u[1] - centre[0]), abs(u[2] - centre[1]), abs(u[3] - centre[1]))
 
 
 # --- the two models, one case at a time ----------------------------------------------------
 @jit
-def _case_constants(k, pad, centre, radius, dims):
+def case_constants(k, pad, centre, radius, dims):
     """Case k's geometry as tuples (module docstring)."""
     return ((pad[k, 0], pad[k, 1], pad[k, 2], pad[k, 3]), (centre[k, 0], centre[k, 1]),
             (radius[k, 0], radius[k, 1]), (dims[k, 0], dims[k, 1], dims[k, 2], dims[k, 3], dims[k, 4]))
-
-
-@jit
-def _compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
-    """``models.compliant_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
-    pad, centre, radius, dims = case
-    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
-    fail, fail_g, fail_J, done = status_out
-    hq, hlocal, hpoint, hnormal, hits, hres = history_out
-    now, acc_all, count_all, capacity = summary_out
-    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
-    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
-    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
-    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
-    Rx3 = q[6]
-    u = _locals(_frames(q), pad)
-    points, normals, distance = _contacts(u, centre, radius, signed)
-    if record:
-        for i in range(9):
-            hq[0, k, i] = q[i]
-        for i in range(4):
-            hlocal[0, k, i], hpoint[0, k, i], hnormal[0, k, i] = u[i], points[i], normals[i]
-        hits[0, k], hres[0, k] = 0, 0.0
-    if summarise:
-        _summarise_step(acc, count, 0, now[0], q, u, distance, radius, dims, 0, capacity)
-    h0 = h1 = h2 = h3 = q  # the last four converged configurations, newest last
-    history = 1
-    done[k] = 1
-    T = 1 if stop_at_ring and _beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
-    for n in range(1, T):
-        guess = _extrapolate(h0, h1, h2, h3, history)
-        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)  # Eq. 5 rows 1-3, 8, 9
-        cset = (pad, points, normals, 0j, 0.0, 0.0)
-        status, its, res, q, g, J, F = _solve(COMPLIANT, guess, cset, tol, max_iter, mark, one_case)
-        if _fatal(status):
-            _record_failure(fail, fail_g, fail_J, k, n, 0, its, status, g, J)
-            break
-        q, F = _wrapped(q, F)
-        if record:
-            for i in range(9):
-                hq[n, k, i] = q[i]
-            for i in range(4):
-                hpoint[n, k, i], hnormal[n, k, i] = points[i], normals[i]
-            hits[n, k], hres[n, k] = its, res
-        h0, h1, h2, h3 = h1, h2, h3, q
-        history = min(history + 1, 4)
-        u = _locals(F, pad)  # the next step's contact data
-        points, normals, distance = _contacts(u, centre, radius, signed)
-        if record:
-            for i in range(4):
-                hlocal[n, k, i] = u[i]
-        if summarise:
-            _summarise_step(acc, count, n, now[n], q, u, distance, radius, dims, its, capacity)
-        done[k] = n + 1
-        if stop_at_ring and _beyond_ring(u, dims):
-            break
-    if summarise:
-        acc_all[k] = acc
-        count_all[k] = count
-
-
-@jit
-def _stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
-    """``models.stick_slip_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
-    pad, centre, radius, dims = case
-    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
-    fail, fail_g, fail_J, done = status_out
-    hq, hq_stick, hdiagonal, hits_stick, hits, hres_stick, hres = history_out
-    now, acc_all, count_all, capacity = summary_out
-    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
-    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
-    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
-    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
-    Rx3 = q[6]
-    if record:
-        for i in range(9):
-            hq[0, k, i], hq_stick[0, k, i] = q[i], NAN
-        hdiagonal[0, k] = False
-        hits_stick[0, k], hits[0, k], hres_stick[0, k], hres[0, k] = 0, 0, 0.0, 0.0
-    F = _frames(q)
-    u = _locals(F, pad)
-    if summarise:
-        _summarise_step(acc, count, 0, now[0], q, u, _distances(u, centre), radius, dims, 0, capacity)
-    q_previous = q_stick_previous = NAN9  # q(t_{n-2}) and q_stick(t_{n-1}), for the predictors
-    started, down_previous = False, False
-    done[k] = 1
-    T = 1 if stop_at_ring and _beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
-    for n in range(1, T):
-        down = xg[n] < xg[n - 1]  # the jammed diagonal: A-D for dX_g >= 0, B-C otherwise
-        c1, c3 = (CORNER_B, CORNER_C) if down else (CORNER_A, CORNER_D)
-        same = started and down_previous == down
-        # sticking (Eq. 31): the diagonal's corners pinned where they are at t_{n-1}
-        R1, e1, R2, e2, R3, e3 = F
-        pins = (_local(R2, e2, pad[c1], R1, e1), _local(R2, e2, pad[c3], R3, e3), 0j, 0j)
-        cset = ((pad[c1], pad[c3], 0j, 0j), pins, pins, 0j, 0.0, 0.0)
-        guess = _sub(_add(q, q_stick_previous), q_previous) if same else q  # the previous sticking increment
-        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)
-        status, its_stick, res_stick, q_stick, g, J, F = _solve(STICKING, guess, cset, tol, max_iter, mark,
-                                                                one_case)
-        if _fatal(status):
-            _record_failure(fail, fail_g, fail_J, k, n, 0, its_stick, status, g, J)
-            break
-        q_stick, F = _wrapped(q_stick, F)
-        # slipping (Eq. 37) from the end of sticking
-        cset, Ry3_rc = _slip_set(F, pad, centre, radius, dims, c1, c3, signed)
-        guess = _sub(_add(q_stick, q), q_stick_previous) if same else q_stick  # the previous slipping increment
-        guess = (q_stick[0], q_stick[1], q_stick[2], guess[3], guess[4], guess[5], guess[6], Ry3_rc, 0.0)
-        status, its, res, q_new, g, J, F = _solve(SLIPPING, guess, cset, tol, max_iter, mark, one_case)
-        if _fatal(status):
-            _record_failure(fail, fail_g, fail_J, k, n, 1, its, status, g, J)
-            break
-        q_previous, q_stick_previous = q, q_stick
-        started, down_previous = True, down
-        q, F = _wrapped(q_new, F)
-        if record:
-            for i in range(9):
-                hq[n, k, i], hq_stick[n, k, i] = q[i], q_stick[i]
-            hdiagonal[n, k] = down
-            hits_stick[n, k], hits[n, k], hres_stick[n, k], hres[n, k] = its_stick, its, res_stick, res
-        if summarise or stop_at_ring:
-            u = _locals(F, pad)
-        if summarise:
-            _summarise_stick(acc, q_stick, q_previous[5] * DEGREES, dims)
-            _summarise_step(acc, count, n, now[n], q, u, _distances(u, centre), radius, dims, its_stick + its,
-                            capacity)
-        done[k] = n + 1
-        if stop_at_ring and _beyond_ring(u, dims):
-            break
-    if summarise:
-        acc_all[k] = acc
-        count_all[k] = count
-
-
-prange = range  # numba.prange once the kernels are compiled (``_kernel``)
-
-
-def _compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
-    for k in prange(q0.shape[0]):
-        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
-        _compliant_case(k, xg, q0[k], _case_constants(k, pad, centre, radius, dims), flags, history_out,
-                        summary_out, status_out)
-
-
-def _stick_slip_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
-    for k in prange(q0.shape[0]):
-        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
-        _stick_slip_case(k, xg, q0[k], _case_constants(k, pad, centre, radius, dims), flags, history_out,
-                         summary_out, status_out)
-
-
-#: the compiled batch kernels, by model (``_kernel``)
-_KERNELS = {}
-
-
-def _kernel(model):
-    """numba and the compiled batch kernel of ``model``: numba is imported, the helpers registered
-    and the kernel compiled (or loaded from the on-disk cache) at the first call."""
-    try:
-        import numba
-    except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs interpreted
-        raise ImportError("the compiled kernels need numba (pip install numba)") from err
-    if model not in _KERNELS:
-        global prange
-        prange = numba.prange
-        compile_helpers()
-        function = _compliant_batch if model == "compliant" else _stick_slip_batch
-        _KERNELS[model] = numba.njit(parallel=True, **OPTIONS)(function)
-    return numba, _KERNELS[model]
 
 
 # --- Python entry points -------------------------------------------------------------------
@@ -680,27 +513,30 @@ class _Batch:
         self.fail_J = np.zeros((N, 4, 4))
         self.done = np.zeros(N, dtype=np.int64)
 
-    def run(self, model, options, normals, history_out, summary_out, stop_at_ring=False, compiled=True):
-        """Run every case: compiled, in parallel, or (``compiled`` False) the same functions
-        interpreted, one case after the other, on Python numbers."""
+    def run(self, kernels, options, normals, history_out, summary_out, stop_at_ring=False, compiled=True):
+        """Run every case through a model's ``kernels`` (``registry.PlanarKernels``): compiled, in
+        parallel, or (``compiled`` False) the same functions interpreted, one case after the other,
+        on Python numbers."""
         flags = (normals == "signed", float(options.tol), int(options.max_iter), options.on_failure == "mark",
                  self.one_case, bool(stop_at_ring))
         status_out = (self.fail, self.fail_g, self.fail_J, self.done)
         if not compiled:
-            case = _compliant_case if model == "compliant" else _stick_slip_case
+            case = kernels.case
             for k in range(self.N):
                 constants = (tuple(complex(z) for z in self.pad[k]), tuple(complex(z) for z in self.centre[k]),
                              tuple(float(r) for r in self.radius[k]), tuple(float(d) for d in self.dims[k]))
                 xg = self.Xg[:, k if self.Xg.shape[1] > 1 else 0].tolist()
                 case(k, xg, self.q0[k].tolist(), constants, flags, history_out, summary_out, status_out)
             return
-        numba, kernel = _kernel(model)
+        import numba  # imported by ``scalar.kernel``
+
+        kernel = scalar.kernel(kernels.batch, parallel=True)
         # dynamic scheduling: cases cost alike, but a core may be shared
         with numba.parallel_chunksize(max(1, self.N // (16 * numba.get_num_threads()))):
             kernel(self.Xg, self.q0, self.pad, self.centre, self.radius, self.dims, flags, history_out,
                    summary_out, status_out)
 
-    def raise_failure(self, model, geometry, options, times, history=None):
+    def raise_failure(self, kernels, geometry, options, times, history=None):
         """Raise the reference's error for the first failure it would meet, if any.
 
         The reference steps all cases together: the first (step, phase, iteration) fails; a
@@ -720,7 +556,11 @@ class _Batch:
             norms = np.abs(self.fail_g[tied])
             score = np.where(np.isnan(norms).any(axis=-1), np.inf, norms.max(axis=-1))
             k = int(tied[np.argmax(score)])
-        cset = self._constraint_set(model, geometry, phase, n)
+        if self.one_case:  # the one-case path names the step's diagonal, the batch path both
+            down = bool(self.Xg[n, 0] < self.Xg[n - 1, 0])
+        else:
+            down = np.zeros(self.shape, dtype=bool)
+        cset = kernels.constraint_set(geometry, phase, down)
         context = newton.context(n, times, cset.phase)
         index = () if self.one_case else tuple(int(i) for i in np.unravel_index(k, self.shape))
         try:
@@ -733,99 +573,52 @@ class _Batch:
                 err.history = history
             raise
 
-    def _constraint_set(self, model, geometry, phase, n):
-        """A constraint set of the failing phase, for its name and row labels."""
-        if model == "compliant":
-            return Compliant(all_corners(geometry), 0.0, 0.0, [0j] * 4, [0j] * 4)
-        if self.one_case:  # the one-case path names the step's diagonal, the batch path both
-            down = bool(self.Xg[n, 0] < self.Xg[n - 1, 0])
-        else:
-            down = np.zeros(self.shape, dtype=bool)
-        corners = diagonal(geometry, down)
-        if phase == 0:
-            return Sticking(corners, 0.0, 0.0, [0j, 0j])
-        return Slipping(corners, np.zeros(9), [0j, 0j], [0j, 0j], 1j, 0.0, 0.0, 0.0)
 
-
-def _check(model, normals, options):
-    if model not in HISTORY:
-        raise ValueError(f"model must be one of {tuple(HISTORY)}, got {model!r}")
+def _kernels(model, normals, options):
+    """The planar kernels of ``model`` (a ValueError names the models that have them), inputs checked."""
+    entry = registry.model(model, lambda entry: entry.planar is not None, " on the planar kernels")
     if normals not in NORMALS:
         raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
     if not isinstance(options, NewtonOptions):
         raise TypeError(f"options must be a NewtonOptions, got {options!r}")
+    return entry.planar
 
 
 def _no_summary():
     return np.zeros(1), np.zeros((0, N_ACC)), np.zeros((0, N_COUNT), dtype=np.int64), CONTINUE
 
 
-#: the history arrays of each model, in the kernels' order: name -> (trailing shape, dtype)
-HISTORY = {
-    "compliant": {"q": ((9,), float), "local": ((4,), complex), "point": ((4,), complex),
-                  "normal": ((4,), complex), "newton_iterations": ((), np.int64), "residual": ((), float)},
-    "stick_slip": {"q": ((9,), float), "q_stick": ((9,), float), "diagonal_BC": ((), bool),
-                   "newton_iterations_stick": ((), np.int64), "newton_iterations": ((), np.int64),
-                   "residual_stick": ((), float), "residual": ((), float)},
-}
-#: the keys in the order of the reference's histories
-HISTORY_ORDER = {
-    "compliant": ("q", "newton_iterations", "residual", "local", "point", "normal"),
-    "stick_slip": ("q", "newton_iterations", "residual", "q_stick", "diagonal_BC", "newton_iterations_stick",
-                   "residual_stick"),
-}
+def _no_history(kernels):
+    return tuple(np.empty((0, 0) + shape, dtype) for shape, dtype in kernels.history.values())
 
 
-def _no_history(model):
-    return tuple(np.empty((0, 0) + shape, dtype) for shape, dtype in HISTORY[model].values())
-
-
-def _history(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled) -> dict:
-    _check(model, normals, options)
-    batch = _Batch(geometry, Xg, theta2_0)
-    T, N, shape = batch.T, batch.N, batch.shape
-    if stop_at_ring and not batch.one_case:
-        raise ValueError("stop_at_ring runs one case: geometry, Xg[1:] and theta2_0 must be scalars")
-    arrays = {key: np.empty((T, N) + tail, dtype) for key, (tail, dtype) in HISTORY[model].items()}
-    batch.run(model, options, normals, tuple(arrays.values()), _no_summary(), stop_at_ring, compiled)
-    steps = int(batch.done.min()) if batch.one_case else T
-
-    def history():
-        out = {key: arrays[key][:steps].reshape((steps,) + shape + arrays[key].shape[2:])
-               for key in HISTORY_ORDER[model]}
-        out["Rx3"] = out["q"][0, ..., RB3]
-        return out
-
-    batch.raise_failure(model, geometry, options, times, history() if batch.one_case else None)
-    return history()
-
-
-def compliant(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
-              stop_at_ring=False, compiled=True) -> dict:
-    """Compliant sliding history, as ``dccss.mechanics.models.compliant``: ``q`` (T, ..., 9);
-    ``newton_iterations``, ``residual`` (T, ...); ``local``, ``point``, ``normal`` (T, ..., 4)
-    complex; ``Rx3``.
+def run(model, geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
+        stop_at_ring=False, compiled=True) -> dict:
+    """The history of ``model`` as the numpy reference's (``dccss.mechanics.models.run``): the same
+    keys, shapes and dtypes (compliant sliding: ``q`` (T, ..., 9); ``newton_iterations``, ``residual``
+    (T, ...); ``local``, ``point``, ``normal`` (T, ..., 4) complex; ``Rx3``).
 
     ``stop_at_ring`` (one case): end the history at the first step where the pad has passed a
     retaining ring, before solving further (``simulation.simulate``'s capacity "stop" and
     "error"). A ConvergenceError of one case carries the history up to the last converged
     step as ``err.history``. ``compiled`` False runs the same functions interpreted (small runs:
     ``backend``), with the same results to the last bit."""
-    return _history("compliant", geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled)
+    kernels = _kernels(model, normals, options)
+    batch = _Batch(geometry, Xg, theta2_0)
+    T, N, shape = batch.T, batch.N, batch.shape
+    if stop_at_ring and not batch.one_case:
+        raise ValueError("stop_at_ring runs one case: geometry, Xg[1:] and theta2_0 must be scalars")
+    arrays = {key: np.empty((T, N) + tail, dtype) for key, (tail, dtype) in kernels.history.items()}
+    batch.run(kernels, options, normals, tuple(arrays.values()), _no_summary(), stop_at_ring, compiled)
+    steps = int(batch.done.min()) if batch.one_case else T
 
+    def history():
+        out = {key: value[:steps].reshape((steps,) + shape + value.shape[2:]) for key, value in arrays.items()}
+        out["Rx3"] = out["q"][0, ..., RB3]
+        return out
 
-def stick_slip(geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
-               stop_at_ring=False, compiled=True) -> dict:
-    """Stick-slip history, as ``dccss.mechanics.models.stick_slip``: ``q``, ``q_stick`` (T, ..., 9),
-    ``diagonal_BC``, ``newton_iterations(_stick)``, ``residual(_stick)`` (T, ...) and ``Rx3``.
-    ``stop_at_ring``, ``compiled`` and errors as for ``compliant``."""
-    return _history("stick_slip", geometry, Xg, theta2_0, normals, options, times, stop_at_ring, compiled)
-
-
-def run(model, geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """The history of model ``model`` by name (``dccss.mechanics.models.run``)."""
-    _check(model, kw.get("normals", "signed"), kw.get("options", NewtonOptions()))
-    return (compliant if model == "compliant" else stick_slip)(geometry, Xg, theta2_0, **kw)
+    batch.raise_failure(kernels, geometry, options, times, history() if batch.one_case else None)
+    return history()
 
 
 def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, normals="signed",
@@ -833,11 +626,11 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     """The per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes and NaN / flag
     conventions, the same ``capacity`` policies), reduced inside the compiled loop: memory
     O(cases). ``progress(n, N)`` is called once, when all N steps are done; ``compiled`` as for
-    ``compliant``."""
+    ``run``."""
 
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
-    _check(model, normals, options)
+    kernels = _kernels(model, normals, options)
     Xg = np.asarray(Xg, dtype=float)
     shape = np.broadcast_shapes(np.shape(geometry.L), Xg.shape[1:], np.shape(theta2_0))
     if shape and np.prod(shape) == 1:  # a batch of one: the one-case path, reshaped back
@@ -852,15 +645,15 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     acc[:, STOPPED] = 0.0
     count = np.zeros((N, N_COUNT), dtype=np.int64)
     count[:, REACHED_STEP] = -1
-    batch.run(model, options, normals, _no_history(model), (now, acc, count, CAPACITY_POLICIES.index(capacity)),
+    batch.run(kernels, options, normals, _no_history(kernels), (now, acc, count, CAPACITY_POLICIES.index(capacity)),
               compiled=compiled)
     if capacity == "error" and options.on_failure != "mark":
         _raise_capacity(batch, acc, count, shape)
-    batch.raise_failure(model, geometry, options, times)
+    batch.raise_failure(kernels, geometry, options, times)
     if progress is not None:
         progress(T - 1, T - 1)
     with np.errstate(invalid="ignore", divide="ignore"):  # failed cases are NaN by design
-        return _summaries(model, acc.reshape(shape + (N_ACC,)), count.reshape(shape + (N_COUNT,)), capacity)
+        return _summaries(kernels, acc.reshape(shape + (N_ACC,)), count.reshape(shape + (N_COUNT,)), capacity)
 
 
 def _raise_capacity(batch, acc, count, shape):
@@ -879,7 +672,7 @@ def _raise_capacity(batch, acc, count, shape):
     raise case_error(acc[k, REACHED], index)
 
 
-def _summaries(model, acc, count, capacity):
+def _summaries(kernels, acc, count, capacity):
     """The summary dict from the accumulators, as the end of ``sweep._summarize``."""
     failure, reached = acc[..., FAILURE], acc[..., REACHED]
     out = {"theta2_max_abs": acc[..., THETA2_MAX_ABS], "theta2_end": acc[..., THETA2_END],
@@ -889,8 +682,8 @@ def _summaries(model, acc, count, capacity):
            "newton_iterations_mean": np.asarray(count[..., ITERATIONS_SUM]) / np.maximum(count[..., STEPS], 1)}
     for i, c in enumerate(CORNERS):
         out[f"I_{c}_max"] = acc[..., I_A_MAX + i]
-    if model == "stick_slip":
-        out.update(sticking_rotation_max=acc[..., STICK_TURN_MAX], rise_stick_max=acc[..., RISE_STICK_MAX])
+    for name, column in kernels.summary_columns.items():
+        out[name] = acc[..., column]
     return mark_failures(out, failure, reached, capacity)
 
 
@@ -903,9 +696,10 @@ def warm():
     # any valid device compiles the same kernels
     device = Geometry.from_degrees(R1=3.0, R3=3.0, alpha1=6.0, alpha3=6.0, h2=0.1, alpha21=2.0, alpha23=2.0, hr1=0.02,
                                    hr3=0.02, hmin1=0.03, hmin3=0.03, tr1=0.03, tr3=0.03)
-    for model in HISTORY:
-        run(model, device, np.array([0.0, 1e-3]))
-        spatial.run(model, device, np.array([[0.0, 0.0], [1e-3, 0.0]]))
+    for name in registry.names(lambda entry: entry.planar is not None):
+        run(name, device, np.array([0.0, 1e-3]))
+    for name in registry.names(lambda entry: entry.spatial is not None):
+        spatial.run(name, device, np.array([[0.0, 0.0], [1e-3, 0.0]]))
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""The two kinematic models as time steppers, for one case or a batch of cases.
+"""The paper's two kinematic models: their steps (kernels, and numpy reference steppers for one case
+or a batch of cases) and their registry entries.
 
 Each step t_{n-1} -> t_n starts from the converged q(t_{n-1}) and
 
@@ -16,19 +17,26 @@ X_g is (T,) for one case or (T, ...) for a batch; geometry and theta^2(t_0) may 
 ``StickSlipStep``; a sweep summarises them on the fly); ``collect`` stacks them into whole
 histories as arrays, time first, which ``dccss.results`` turns into datasets.
 
-The models are data: ``REGISTRY`` holds one ``Model`` per model (name, title, stepper, step
-record, the diagnostics its datasets carry and the summaries its sweeps keep). Nothing outside
-this module branches on a model's name; adding a model is adding an entry.
+Each model is written here once more, as kernels: its planar case (``compliant_case``,
+``stick_slip_case``: the steps of one case on ``compiled``'s scalar helpers, interpreted or
+compiled) and its spatial step (``*_spatial_step`` on ``spatial``'s phases). Those, not the step
+generators, run the models (``backend``); the step generators stay as the numpy reference the
+tests check the kernels against.
+
+The models are data: each is a ``registry.Model`` entry, registered at the end of this module
+(name, title, stepper, step record, the diagnostics its datasets carry, the summaries its sweeps
+keep, its plot style and its kernels). Nothing outside this module names or branches on a model;
+adding a model is registering an entry.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import backend, newton
+from . import backend, compiled, newton, scalar, spatial
+from .compiled import RISE_STICK_MAX, STICK_TURN_MAX
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .kinematics import (
     CORNERS,
@@ -43,6 +51,8 @@ from .kinematics import (
     local,
     start,
 )
+from .registry import REGISTRY, Model, PlanarKernels, model, register
+from .scalar import jit
 
 
 @dataclass(frozen=True, slots=True)
@@ -234,62 +244,238 @@ def _stick_slip_summary(step, previous_theta2, rise_of) -> dict:
     return {"sticking_rotation_max": turn, "rise_stick_max": rise_of(step.q_stick)}
 
 
-@dataclass(frozen=True)
-class Model:
-    """A kinematic model as data.
+# --- the kernels: each model's steps, on scalars -------------------------------------------------
+@jit
+def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
+    """``models.compliant_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    pad, centre, radius, dims = case
+    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
+    fail, fail_g, fail_J, done = status_out
+    hq, hits, hres, hlocal, hpoint, hnormal = history_out  # the order of ``COMPLIANT_HISTORY``
+    now, acc_all, count_all, capacity = summary_out
+    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
+    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
+    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    Rx3 = q[6]
+    u = compiled.plate_positions(compiled.frames(q), pad)
+    points, normals, distance = compiled.contacts(u, centre, radius, signed)
+    if record:
+        for i in range(9):
+            hq[0, k, i] = q[i]
+        for i in range(4):
+            hlocal[0, k, i], hpoint[0, k, i], hnormal[0, k, i] = u[i], points[i], normals[i]
+        hits[0, k], hres[0, k] = 0, 0.0
+    if summarise:
+        compiled.summarise_step(acc, count, 0, now[0], q, u, distance, radius, dims, 0, capacity)
+    h0 = h1 = h2 = h3 = q  # the last four converged configurations, newest last
+    history = 1
+    done[k] = 1
+    T = 1 if stop_at_ring and compiled.beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
+    for n in range(1, T):
+        guess = compiled.extrapolate(h0, h1, h2, h3, history)
+        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)  # Eq. 5 rows 1-3, 8, 9
+        cset = (pad, points, normals, 0j, 0.0, 0.0)
+        status, its, res, q, g, J, F = compiled.solve(compiled.COMPLIANT, guess, cset, tol, max_iter, mark, one_case)
+        if compiled.fatal(status):
+            compiled.record_failure(fail, fail_g, fail_J, k, n, 0, its, status, g, J)
+            break
+        q, F = compiled.wrapped(q, F)
+        if record:
+            for i in range(9):
+                hq[n, k, i] = q[i]
+            for i in range(4):
+                hpoint[n, k, i], hnormal[n, k, i] = points[i], normals[i]
+            hits[n, k], hres[n, k] = its, res
+        h0, h1, h2, h3 = h1, h2, h3, q
+        history = min(history + 1, 4)
+        u = compiled.plate_positions(F, pad)  # the next step's contact data
+        points, normals, distance = compiled.contacts(u, centre, radius, signed)
+        if record:
+            for i in range(4):
+                hlocal[n, k, i] = u[i]
+        if summarise:
+            compiled.summarise_step(acc, count, n, now[n], q, u, distance, radius, dims, its, capacity)
+        done[k] = n + 1
+        if stop_at_ring and compiled.beyond_ring(u, dims):
+            break
+    if summarise:
+        acc_all[k] = acc
+        count_all[k] = count
 
-    name, title : identifier (files, configs) and the paper's name.
-    steps : the step generator ``steps(geometry, Xg, theta2_0, *, normals, options, times)``.
-    record : the type of its step records.
-    diagnostics : ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``,
-        the variables only this model's datasets carry (besides the configuration at the end
-        of each step, which every model has).
-    stages : the configurations a step stores besides its end (suffix -> long-name phrase).
-    summaries : {name: (units, long_name)} of the sweep summaries only this model has, computed
-        per step by ``summary(step, previous_theta2_deg, rise_of)`` and reduced by their max.
-    iteration_fields : the step fields that count Newton iterations (summed per step).
-    line, marker : how plots draw it (matplotlib line and marker properties; empty: a spare style).
-    """
 
-    name: str
-    title: str
-    steps: Callable
-    record: type
-    diagnostics: Callable
-    stages: dict
-    summaries: dict
-    summary: Callable | None
-    iteration_fields: tuple
-    line: dict = field(default_factory=dict)
-    marker: dict = field(default_factory=dict)
+@jit
+def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
+    """``models.stick_slip_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    pad, centre, radius, dims = case
+    signed, tol, max_iter, mark, one_case, stop_at_ring = flags
+    fail, fail_g, fail_J, done = status_out
+    hq, hits, hres, hq_stick, hdiagonal, hits_stick, hres_stick = history_out  # ``STICK_SLIP_HISTORY``
+    now, acc_all, count_all, capacity = summary_out
+    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
+    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
+    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    Rx3 = q[6]
+    if record:
+        for i in range(9):
+            hq[0, k, i], hq_stick[0, k, i] = q[i], compiled.NAN
+        hdiagonal[0, k] = False
+        hits_stick[0, k], hits[0, k], hres_stick[0, k], hres[0, k] = 0, 0, 0.0, 0.0
+    F = compiled.frames(q)
+    u = compiled.plate_positions(F, pad)
+    if summarise:
+        compiled.summarise_step(acc, count, 0, now[0], q, u, compiled.distances(u, centre), radius, dims, 0, capacity)
+    q_previous = q_stick_previous = compiled.NAN9  # q(t_{n-2}) and q_stick(t_{n-1}), for the predictors
+    started, down_previous = False, False
+    done[k] = 1
+    T = 1 if stop_at_ring and compiled.beyond_ring(u, dims) else len(xg)  # a start beyond a ring: no step
+    for n in range(1, T):
+        down = xg[n] < xg[n - 1]  # the jammed diagonal: A-D for dX_g >= 0, B-C otherwise
+        c1, c3 = (compiled.CORNER_B, compiled.CORNER_C) if down else (compiled.CORNER_A, compiled.CORNER_D)
+        same = started and down_previous == down
+        # sticking (Eq. 31): the diagonal's corners pinned where they are at t_{n-1}
+        R1, e1, R2, e2, R3, e3 = F
+        pins = (compiled.local(R2, e2, pad[c1], R1, e1), compiled.local(R2, e2, pad[c3], R3, e3), 0j, 0j)
+        cset = ((pad[c1], pad[c3], 0j, 0j), pins, pins, 0j, 0.0, 0.0)
+        # the previous sticking increment
+        guess = compiled.sub(compiled.add(q, q_stick_previous), q_previous) if same else q
+        guess = (xg[n], 0.0, 0.0, guess[3], guess[4], guess[5], Rx3, guess[7], 0.0)
+        status, its_stick, res_stick, q_stick, g, J, F = compiled.solve(compiled.STICKING, guess, cset, tol, max_iter,
+                                                                         mark, one_case)
+        if compiled.fatal(status):
+            compiled.record_failure(fail, fail_g, fail_J, k, n, 0, its_stick, status, g, J)
+            break
+        q_stick, F = compiled.wrapped(q_stick, F)
+        # slipping (Eq. 37) from the end of sticking
+        cset, Ry3_rc = compiled.slip_set(F, pad, centre, radius, dims, c1, c3, signed)
+        # the previous slipping increment
+        guess = compiled.sub(compiled.add(q_stick, q), q_stick_previous) if same else q_stick
+        guess = (q_stick[0], q_stick[1], q_stick[2], guess[3], guess[4], guess[5], guess[6], Ry3_rc, 0.0)
+        status, its, res, q_new, g, J, F = compiled.solve(compiled.SLIPPING, guess, cset, tol, max_iter, mark, one_case)
+        if compiled.fatal(status):
+            compiled.record_failure(fail, fail_g, fail_J, k, n, 1, its, status, g, J)
+            break
+        q_previous, q_stick_previous = q, q_stick
+        started, down_previous = True, down
+        q, F = compiled.wrapped(q_new, F)
+        if record:
+            for i in range(9):
+                hq[n, k, i], hq_stick[n, k, i] = q[i], q_stick[i]
+            hdiagonal[n, k] = down
+            hits_stick[n, k], hits[n, k], hres_stick[n, k], hres[n, k] = its_stick, its, res_stick, res
+        if summarise or stop_at_ring:
+            u = compiled.plate_positions(F, pad)
+        if summarise:
+            compiled.summarise_stick(acc, q_stick, q_previous[5] * compiled.DEGREES, dims)
+            compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius, dims,
+                                    its_stick + its, capacity)
+        done[k] = n + 1
+        if stop_at_ring and compiled.beyond_ring(u, dims):
+            break
+    if summarise:
+        acc_all[k] = acc
+        count_all[k] = count
 
-    @property
-    def sticking(self) -> bool:
-        """Whether its steps have a sticking phase (and store its end, ``stages``)."""
-        return bool(self.stages)
+
+def compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
+    for k in scalar.prange(q0.shape[0]):
+        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
+        compliant_case(k, xg, q0[k], compiled.case_constants(k, pad, centre, radius, dims), flags, history_out,
+                        summary_out, status_out)
 
 
-REGISTRY = {m.name: m for m in (
-    # compliant sliding drawn wide and solid underneath, stick-slip narrow and dashed on top
-    Model("compliant", "Compliant Sliding", compliant_steps, CompliantStep, _compliant_diagnostics, {}, {}, None,
-          ("newton_iterations",), line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
-          marker=dict(marker="o", ms=8, mfc="none", mew=1.8)),
-    Model("stick_slip", "Stick-Slip", stick_slip_steps, StickSlipStep, _stick_slip_diagnostics,
-          {"_stick": " at the end of the sticking phase"},
-          {"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
-                                               "|theta2_stick - theta2(t_n-1)|"),
-           "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
-          _stick_slip_summary, ("newton_iterations", "newton_iterations_stick"),
-          line=dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3), marker=dict(marker="D", ms=4.5, mew=0.8)),
-)}
+def stick_slip_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):
+    for k in scalar.prange(q0.shape[0]):
+        xg = Xg[:, k] if Xg.shape[1] > 1 else Xg[:, 0]
+        stick_slip_case(k, xg, q0[k], compiled.case_constants(k, pad, centre, radius, dims), flags, history_out,
+                         summary_out, status_out)
+
+
+#: the history arrays each planar case fills, in the order of ``history_out`` and of the histories:
+#: name -> (trailing shape, dtype)
+COMPLIANT_HISTORY = {"q": ((9,), float), "newton_iterations": ((), np.int64), "residual": ((), float),
+                     "local": ((4,), complex), "point": ((4,), complex), "normal": ((4,), complex)}
+STICK_SLIP_HISTORY = {"q": ((9,), float), "newton_iterations": ((), np.int64), "residual": ((), float),
+                      "q_stick": ((9,), float), "diagonal_BC": ((), bool), "newton_iterations_stick": ((), np.int64),
+                      "residual_stick": ((), float)}
+
+
+def compliant_set(geometry, phase, down):
+    """A compliant constraint set of ``geometry``, for an error's name and row labels."""
+    return Compliant(all_corners(geometry), 0.0, 0.0, [0j] * 4, [0j] * 4)
+
+
+def stick_slip_set(geometry, phase, down):
+    """The sticking (phase 0) or slipping (1) set of the jammed diagonal (``down``: B-C), for an error's
+    name and row labels."""
+    corners = diagonal(geometry, down)
+    if phase == 0:
+        return Sticking(corners, 0.0, 0.0, [0j, 0j])
+    return Slipping(corners, np.zeros(9), [0j, 0j], [0j, 0j], 1j, 0.0, 0.0, 0.0)
+
+
+@jit
+def compliant_spatial_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
+    """One compliant sliding step: (pose, end of sticking (none: NaN), its and residual of both
+    phases, status, failing phase, its rows)."""
+    up = spatial.unit(spatial.cross(m, e1)) if in_plane else spatial.Z
+    phase = spatial.compliant_phase(dev, pose, R1, m, up)
+    x, its, res, status, g = spatial.newton(spatial.compliant_rows, phase, spatial.guess(pose, R1), tol, max_iter, work)
+    return spatial.compliant_pose(phase, x), spatial.NAN_POSE, 0, 0.0, its, res, status, spatial.COMPLIANT, g
+
+
+@jit
+def stick_slip_spatial_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
+    """One stick-slip step (as ``compliant_step``): sticking, then slipping from its end."""
+    v1, v3 = spatial.pinned(pose, dev, m)
+    stick = spatial.sticking_phase(dev, pose, R1, guide, v1, v3)
+    x, its1, res1, status, g = spatial.newton(spatial.sticking_rows, stick, spatial.guess(pose, R1), tol, max_iter,
+                                              work)
+    if status != spatial.CONVERGED:
+        return spatial.NAN_POSE, spatial.NAN_POSE, its1, res1, 0, 0.0, status, spatial.STICKING, g
+    end = spatial.sticking_pose(stick, x)
+    slip = spatial.slipping_phase(dev, end, e1, v1, v3)
+    x, its, res, status, g = spatial.newton(spatial.slipping_rows, slip, (end.G[0], end.G[1], end.G[2], 0.0, 0.0, 0.0),
+                                            tol, max_iter, work)
+    return spatial.slipping_pose(slip, x), end, its1, res1, its, res, status, spatial.SLIPPING, g
+
+
+
+def compliant_spatial_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
+                              planes, solver, failure):
+    """``spatial.history`` of compliant sliding (compiled by ``spatial.run``; numba caches no function
+    that takes a function)."""
+    return spatial.history(compliant_spatial_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter,
+                           stop_at_ring, ends, sticks, planes, solver, failure)
+
+
+def stick_slip_spatial_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks,
+                               planes, solver, failure):
+    """``spatial.history`` of stick-slip (as ``compliant_spatial_history``)."""
+    return spatial.history(stick_slip_spatial_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter,
+                           stop_at_ring, ends, sticks, planes, solver, failure)
+
+# --- the registry entries -----------------------------------------------------------------------
+# compliant sliding drawn wide and solid underneath, stick-slip narrow and dashed on top
+register(Model(
+    "compliant", "Compliant Sliding", compliant_steps, CompliantStep, _compliant_diagnostics, {}, {}, None,
+    ("newton_iterations",), line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
+    marker=dict(marker="o", ms=8, mfc="none", mew=1.8),
+    planar=PlanarKernels(compliant_case, compliant_batch, COMPLIANT_HISTORY, {}, compliant_set),
+    spatial=compliant_spatial_history))
+register(Model(
+    "stick_slip", "Stick-Slip", stick_slip_steps, StickSlipStep, _stick_slip_diagnostics,
+    {"_stick": " at the end of the sticking phase"},
+    {"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
+                                         "|theta2_stick - theta2(t_n-1)|"),
+     "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
+    _stick_slip_summary, ("newton_iterations", "newton_iterations_stick"),
+    line=dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3), marker=dict(marker="D", ms=4.5, mew=0.8),
+    planar=PlanarKernels(stick_slip_case, stick_slip_batch, STICK_SLIP_HISTORY,
+                         {"sticking_rotation_max": STICK_TURN_MAX, "rise_stick_max": RISE_STICK_MAX}, stick_slip_set),
+    spatial=stick_slip_spatial_history))
 MODELS = tuple(REGISTRY)
-
-
-def model(name) -> Model:
-    """The registry entry of ``name``; a ValueError names the known models."""
-    if name not in REGISTRY:
-        raise ValueError(f"model must be one of {MODELS}, got {name!r}")
-    return REGISTRY[name]
 
 
 def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:

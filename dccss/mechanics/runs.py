@@ -27,7 +27,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import backend, models
+from . import backend, models, registry, spatial
 from .capacity import (
     CAPACITY_POLICIES,
     IncompatibleMotion,
@@ -103,16 +103,14 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
     theta2_0 (rad; in the vertical plane of ``azimuth`` (rad) in space), with the run policies
     (module docstring). ``times`` (s) are quoted in errors and events; ``progress(n, N)`` is called
     after each step (once, at the end, on the kernels)."""
-    models.model(model)  # a ValueError names the known models
+    registry.model(model)  # a ValueError names the known models
     check_policies(capacity, on_failure)
     if np.ndim(geometry.L) != 0:
         raise ValueError("a history runs one case: geometry fields must be scalars")
     Xg = np.asarray(Xg, dtype=float)
     motion = motion_of(Xg)
     if motion == "spatial":
-        from . import spatial  # numba: imported by the runs that need it
-    if motion == "spatial" and model not in spatial.STEPPERS:
-        raise ValueError(f"model must be one of {spatial.SPATIAL_MODELS} in space, got {model!r}")
+        registry.model(model, spatial.in_space, " in space")
     if motion == "spatial" and normals != "signed":
         raise ValueError(f"normals: the spatial model (bidirectional ground motion) uses signed normals only, got "
                          f"{normals!r} (unsigned normals reproduce the planar paper's computation)")
@@ -260,7 +258,6 @@ def _past_reach(out, geometry, Xg, limit, now, capacity, on_failure) -> dict:
 
 def _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity, times, progress):
     """The spatial models case after case, each a ``history`` reduced by ``spatial.summary``."""
-    from . import spatial  # numba: imported by the runs that need it
 
     check_policies(capacity, options.on_failure)
     T, n = Xg.shape[:2]

@@ -3,15 +3,22 @@ residual norm of their Newton loops.
 
 The kernels' helpers stay plain Python functions (``jit`` marks them): the same functions run
 interpreted where a run is too small to pay for compiling, without importing numba, and are
-registered with Numba (``compile_helpers``) the first time a kernel is compiled, which then
-compiles them inlined. Numba's on-disk cache of a kernel is invalidated by a change of the kernel's own
-file only: after editing a helper in another module (this one, ``linear``), clear the cache
-(``__pycache__/*.nbi``) or touch the kernel's file.
+registered with Numba (``compile_helpers``) the first time a kernel is compiled (``kernel``), which
+then compiles them inlined.
+
+Numba's on-disk cache of a kernel would be invalidated by a change of the kernel's own file only, not
+of the helpers it inlines from other modules. ``kernel`` therefore caches in a folder named by a
+digest of every module of ``dccss.mechanics`` (``__pycache__/kernels-<digest>`` beside this file,
+or under ``NUMBA_CACHE_DIR`` when it is set): any change of the mechanics compiles afresh.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import shutil
+from pathlib import Path
 
 #: IEEE semantics for a division by zero (as numpy), no Python-style checks in the loops; kernels
 #: cached on disk
@@ -20,6 +27,10 @@ OPTIONS = dict(cache=True, error_model="numpy")
 
 #: helpers marked by ``jit`` and not yet registered with Numba
 _PENDING = []
+#: ``range`` for the kernels' loops over cases, ``numba.prange`` once a kernel is compiled (``kernel``)
+prange = range
+#: the compiled kernels, by function
+_KERNELS = {}
 
 
 def jit(function):
@@ -41,6 +52,56 @@ def compile_helpers():
 
     while _PENDING:
         register_jitable(error_model=OPTIONS["error_model"], forceinline=True)(_PENDING.pop())
+
+
+def kernel(function, parallel=False):
+    """``function`` compiled with Numba (or loaded from the on-disk cache), once per process: numba is
+    imported, the helpers registered and ``prange`` made numba's."""
+    if function not in _KERNELS:
+        try:
+            import numba
+        except ImportError as err:  # a dependency; an installation without it (pip --no-deps) runs interpreted
+            raise ImportError("the compiled kernels need numba (pip install numba)") from err
+        global prange
+        prange = numba.prange
+        compile_helpers()
+        saved = numba.config.CACHE_DIR
+        folder = cache_folder(saved)
+        if folder is not None:  # numba's locator reads the setting when the function is wrapped
+            numba.config.CACHE_DIR = str(folder)
+        try:
+            _KERNELS[function] = numba.njit(parallel=parallel, **OPTIONS)(function)
+        finally:
+            numba.config.CACHE_DIR = saved
+    return _KERNELS[function]
+
+
+def source_digest(folder=Path(__file__).parent) -> str:
+    """A digest of the Python sources in ``folder`` (the mechanics: every module a kernel may inline)."""
+    digest = hashlib.sha256()
+    for source in sorted(folder.glob("*.py")):
+        digest.update(source.name.encode() + b"\0" + source.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def cache_folder(user=""):
+    """The kernels' cache folder, ``kernels-<source_digest()>``: under ``user`` (NUMBA_CACHE_DIR) or in
+    this package's ``__pycache__`` (older digests there are removed); None where that is not
+    writable (numba's own choice then)."""
+    name = f"kernels-{source_digest()}"
+    if user:
+        return Path(user) / name
+    parent = Path(__file__).parent / "__pycache__"
+    try:
+        parent.mkdir(exist_ok=True)
+    except OSError:
+        return None
+    if not os.access(parent, os.W_OK):
+        return None
+    for old in parent.glob("kernels-*"):
+        if old.name != name:
+            shutil.rmtree(old, ignore_errors=True)
+    return parent / name
 
 
 @jit

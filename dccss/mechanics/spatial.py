@@ -1,4 +1,4 @@
-"""Bidirectional ground motion: the three bodies in space, both models, one case, compiled.
+"""Bidirectional ground motion: the three bodies in space, one case, compiled.
 
 The paper's planar model (``models``) moves RB1 along one line. Under a horizontal ground
 displacement X_g(t) in R^2 the pad tilts out of any fixed plane. This module is the
@@ -46,10 +46,11 @@ and a phase is a named tuple of what its rows hold fixed (``CompliantPhase``, ``
 ``SlippingPhase``), with ``*_rows(phase, x)`` returning the residual g and the Jacobian dg/dx as
 tuples. Every phase has six unknowns x = (G^2, w_1, w_2, R^3_z); slipping, whose RB3 is fixed by
 Eq. 41, carries x_6 with the unit row x_6 = 0 so that one Newton loop and one 6 x 6 solve
-(Gaussian elimination with partial pivoting) serve all three. A whole history runs in one
-compiled call (``run``), which also evaluates per step the section's interpenetration and the
-clearances to the rings (the ring test of ``capacity="stop"``). The kernels are cached on disk
-(``cache=True``) and compiled once per machine.
+(Gaussian elimination with partial pivoting) serve all three. A model's step is written with
+these phases in ``models`` (its registry entry's ``spatial`` history calls ``history`` with it). A
+whole history runs in one compiled call (``run``), which also evaluates per step the section's
+interpenetration and the clearances to the rings (the ring test of ``capacity="stop"``). The
+kernels are compiled once per machine and source version and cached on disk (``scalar.kernel``).
 """
 
 from __future__ import annotations
@@ -58,11 +59,10 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
 
-from .models import REGISTRY
+from . import registry, scalar
 from .newton import STALLED, ConvergenceError, NewtonOptions, SingularJacobianError
-from .scalar import OPTIONS, compile_helpers, jit, max_abs
+from .scalar import jit, max_abs
 
 Z = (0.0, 0.0, 1.0)
 #: the section's rim points, in the order of the step's rows: lower trailing, lower leading,
@@ -83,11 +83,6 @@ LABELS = (
      "G^2 on the line C^1C^3 (Eq. 38)", "axis in the slip plane: C^21 with C^1",
      "axis in the slip plane: C^23 with C^3", "RB3 held at Eq. 41 (a unit row)"),
 )
-
-#: the same as ``scalar.jit`` for the generic functions that take a compiled function as an argument (``newton``'s
-#: rows, ``_history``'s stepper): numba cannot cache those (a function type does not survive on
-#: disk), so they are compiled into the cached kernels that call them
-generic = njit(error_model=OPTIONS["error_model"], forceinline=True)
 
 
 # --- vectors (3-tuples) and rotations (tuples of columns) ----------------------------------------
@@ -526,7 +521,7 @@ def solve6(J, g, work):
     return True, (work[0, n], work[1, n], work[2, n], work[3, n], work[4, n], work[5, n])
 
 
-@generic
+@jit
 def newton(rows, phase, x, tol, max_iter, work):
     """Newton-Raphson on ``rows(phase, x)`` from x: (x, iterations, max |g|, status, g)."""
     for it in range(max_iter + 1):
@@ -549,34 +544,9 @@ NAN_POSE = Pose(NAN3, NAN3, (NAN3, NAN3, NAN3), NAN3)
 
 
 @jit
-def _guess(pose, R1):
+def guess(pose, R1):
     G = axpy(pose.G, 0.5, sub(R1, pose.R1))
     return (G[0], G[1], G[2], 0.0, 0.0, pose.R3[2])
-
-
-@jit
-def compliant_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
-    """One compliant sliding step: (pose, end of sticking (none: NaN), its and residual of both
-    phases, status, failing phase, its rows)."""
-    up = unit(cross(m, e1)) if in_plane else Z
-    phase = compliant_phase(dev, pose, R1, m, up)
-    x, its, res, status, g = newton(compliant_rows, phase, _guess(pose, R1), tol, max_iter, work)
-    return compliant_pose(phase, x), NAN_POSE, 0, 0.0, its, res, status, COMPLIANT, g
-
-
-@jit
-def stick_slip_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
-    """One stick-slip step (as ``compliant_step``): sticking, then slipping from its end."""
-    v1, v3 = pinned(pose, dev, m)
-    stick = sticking_phase(dev, pose, R1, guide, v1, v3)
-    x, its1, res1, status, g = newton(sticking_rows, stick, _guess(pose, R1), tol, max_iter, work)
-    if status != CONVERGED:
-        return NAN_POSE, NAN_POSE, its1, res1, 0, 0.0, status, STICKING, g
-    end = sticking_pose(stick, x)
-    slip = slipping_phase(dev, end, e1, v1, v3)
-    x, its, res, status, g = newton(slipping_rows, slip, (end.G[0], end.G[1], end.G[2], 0.0, 0.0, 0.0), tol,
-                                    max_iter, work)
-    return slipping_pose(slip, x), end, its1, res1, its, res, status, SLIPPING, g
 
 
 # --- what a history shows ------------------------------------------------------------------------
@@ -626,8 +596,8 @@ def _store(out, n, pose, dev, m):
     out[n, 22], out[n, 23] = clearances(pose, dev)
 
 
-@generic
-def _history(step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
+@jit
+def history(step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
              solver, failure):
     """All the steps of one case: rows of ``ends``, ``sticks`` (T, 24; ``_store``), ``planes`` (T, 6:
     e1, m) and ``solver`` (T, 4: iterations and residual of sticking, then of the step's last
@@ -664,25 +634,11 @@ def _history(step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, sto
     return Xg.shape[0]
 
 
-@njit(**OPTIONS)
-def compliant_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
-                      solver, failure):
-    """``_history`` of compliant sliding (arguments but the stepper as ``_history``'s)."""
-    return _history(compliant_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends,
-                    sticks, planes, solver, failure)
+def in_space(entry) -> bool:
+    """Whether a registry entry runs in space (has a spatial history)."""
+    return entry.spatial is not None
 
 
-@njit(**OPTIONS)
-def stick_slip_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends, sticks, planes,
-                       solver, failure):
-    """``_history`` of stick-slip (arguments but the stepper as ``_history``'s)."""
-    return _history(stick_slip_step, dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, max_iter, stop_at_ring, ends,
-                    sticks, planes, solver, failure)
-
-
-#: the compiled history of each model of the registry (``models.REGISTRY``) that runs in space
-STEPPERS = {"compliant": compliant_history, "stick_slip": stick_slip_history}
-SPATIAL_MODELS = tuple(STEPPERS)
 #: the per-step quantities of a history, by column of the ``_store`` rows: name -> (columns, shape)
 COLUMNS = {"R1": (slice(0, 3), (3,)), "G": (slice(3, 6), (3,)), "Q": (slice(6, 15), (3, 3)),
            "R3": (slice(15, 18), (3,)), "interpenetration": (slice(18, 22), (4,)),
@@ -723,21 +679,20 @@ def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(
     A ConvergenceError (SingularJacobianError) names the step, time, phase and largest row and
     carries the history up to the last converged step as ``err.history``.
     """
-    if name not in STEPPERS:
-        raise ValueError(f"model must be one of {SPATIAL_MODELS}, got {name!r}")
+    entry = registry.model(name, in_space, " in space")
     Xg = _ground(Xg)
     dev = device(geometry)
     T = len(Xg)
     ends, sticks, planes = np.empty((T, 24)), np.empty((T, 24)), np.empty((T, 6))
     solver, failure = np.empty((T, 4)), np.zeros(8)
-    done = STEPPERS[name](dev, Xg, float(theta2_0), float(azimuth), float(geometry.Ry3_compatible(theta2_0)),
-                          bool(in_plane), float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks,
-                          planes, solver, failure)
+    kernel = scalar.kernel(entry.spatial)
+    done = kernel(dev, Xg, float(theta2_0), float(azimuth), float(geometry.Ry3_compatible(theta2_0)), bool(in_plane),
+                   float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks, planes, solver, failure)
     history = _unpack(ends[:done])
     history["e1"], history["m"] = planes[:done, :3], planes[:done, 3:]
     history["newton_iterations"] = solver[:done, 2].astype(np.int64)
     history["residual"] = solver[:done, 3]
-    if REGISTRY[name].sticking:
+    if entry.sticking:
         history.update(_unpack(sticks[:done], "stick_"))
         history["newton_iterations_stick"] = solver[:done, 0].astype(np.int64)
         history["residual_stick"] = solver[:done, 1]
@@ -822,5 +777,3 @@ def summary(history, geometry) -> dict:
         out["rise_stick_max"] = np.nanmax(history["stick_R3"][1:, 2] - device(geometry).rest3) if steps > 1 else np.nan
     return out
 
-
-compile_helpers()  # the spatial models always run compiled

@@ -1,0 +1,101 @@
+"""The registry of kinematic models: a model is a ``Model`` entry, and nothing else names it.
+
+An entry holds everything that differs between models: its name and title, its numpy reference
+stepper and step record, the diagnostics its datasets carry, its summaries, its line style on
+plots, whether it has a sticking phase, and its kernels (planar: ``PlanarKernels`` for
+``compiled``; spatial: a history for ``spatial``). ``models`` defines and registers the paper's two
+models (importing ``dccss.mechanics`` registers them); a new model is one ``register`` call.
+This module imports nothing of the package, so every module can look a model up by name.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+
+class PlanarKernels(NamedTuple):
+    """A model's planar kernels (``compiled``: the module docstring gives their arguments).
+
+    case : ``case(k, xg, q0, constants, flags, history_out, summary_out, status_out)``, all the
+        steps of case k (a plain function: interpreted, or compiled inlined into ``batch``).
+    batch : the same over all cases (``for k in scalar.prange(...)``), compiled with Numba.
+    history : {key: (trailing shape, dtype)} of the history arrays ``case`` fills, in the order
+        of ``history_out`` and of the histories it returns.
+    summary_columns : {summary name: column of the accumulators} of the model's own summaries.
+    constraint_set : ``constraint_set(geometry, phase, down)``: a constraint set of the failing
+        phase (0 or 1) of a step, for an error's message (``down``: the jammed diagonal is B-C).
+    """
+
+    case: Callable
+    batch: Callable
+    history: dict
+    summary_columns: dict
+    constraint_set: Callable
+
+
+@dataclass(frozen=True)
+class Model:
+    """A kinematic model as data.
+
+    name, title : identifier (files, configs) and the paper's name.
+    steps : the numpy reference stepper ``steps(geometry, Xg, theta2_0, *, normals, options, times)``.
+    record : the type of its step records.
+    diagnostics : ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``,
+        the variables only this model's datasets carry (besides the configuration at the end
+        of each step, which every model has).
+    stages : the configurations a step stores besides its end (suffix -> long-name phrase).
+    summaries : {name: (units, long_name)} of the sweep summaries only this model has, computed
+        per step by ``summary(step, previous_theta2_deg, rise_of)`` and reduced by their max.
+    iteration_fields : the step fields that count Newton iterations (summed per step).
+    line, marker : how plots draw it (matplotlib line and marker properties; empty: a spare style).
+    planar : its planar kernels (None: it runs on the numpy reference only).
+    spatial : its spatial history (``spatial``'s ``history(step, ...)`` bound to its step; None: it
+        does not run in space).
+    """
+
+    name: str
+    title: str
+    steps: Callable
+    record: type
+    diagnostics: Callable
+    stages: dict
+    summaries: dict
+    summary: Callable | None
+    iteration_fields: tuple
+    line: dict = field(default_factory=dict)
+    marker: dict = field(default_factory=dict)
+    planar: PlanarKernels | None = None
+    spatial: Callable | None = None
+
+    @property
+    def sticking(self) -> bool:
+        """Whether its steps have a sticking phase (and store its end, ``stages``)."""
+        return bool(self.stages)
+
+
+#: the registered models, by name, in the order of registration
+REGISTRY: dict[str, Model] = {}
+
+
+def register(entry: Model) -> Model:
+    """Add ``entry`` to the registry (a ValueError if its name is taken)."""
+    if entry.name in REGISTRY:
+        raise ValueError(f"a model named {entry.name!r} is registered already")
+    REGISTRY[entry.name] = entry
+    return entry
+
+
+def names(where=None) -> tuple:
+    """The registered models' names; ``where(entry)`` filters them."""
+    return tuple(name for name, entry in REGISTRY.items() if where is None or where(entry))
+
+
+def model(name, where=None, context="") -> Model:
+    """The registry entry of ``name``; a ValueError names the models allowed (``where`` filters them,
+    ``context`` says where: e.g. " in space")."""
+    allowed = names(where)
+    if name not in allowed:
+        raise ValueError(f"model must be one of {allowed}{context}, got {name!r}")
+    return REGISTRY[name]
