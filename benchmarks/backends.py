@@ -1,4 +1,5 @@
-"""The numpy and the compiled (numba) backends side by side: sweeps and one long history.
+"""The compiled kernels (numba) beside the numpy reference (the tests' ``tests/oracle.py``, "numpy") and
+the interpreted kernels ("python"): sweeps and one long history.
 
 Each measurement runs in a fresh process (its own peak resident memory; the compiled one
 loads its kernels from the on-disk cache, or compiles them if the cache is empty):
@@ -12,17 +13,18 @@ loads its kernels from the on-disk cache, or compiles them if the cache is empty
 * ``run``: the same history through ``dccss run CASE.yaml -o OUT.nc`` as a whole process
   (interpreter start, imports, the run, the dataset written), timed from outside.
 
-Each runs through the package's entry points with DCCSS_BACKEND set to the backend measured.
-cold_s is the first call in the process (the compiled backend: loading its kernels from the
-cache), warm_s the second; the numpy backend runs once (it has nothing to warm up). For ``run``
-cold_s is a process with an empty kernel cache (a temporary NUMBA_CACHE_DIR: it compiles), warm_s
-the best of ``--repeat`` processes that load them (numpy: the best of as many, alternating with
-them). Lines:
+Each runs through the package's entry points with DCCSS_BACKEND set to the backend measured (the
+numpy reference: through its own ``run`` and ``summarize``; ``dccss run`` is timed on the interpreted
+kernels instead). cold_s is the first call in the process (the compiled backend: loading its
+kernels from the cache), warm_s the second; the numpy reference runs once (it has nothing to warm
+up). For ``run`` cold_s is a process with an empty kernel cache (a temporary NUMBA_CACHE_DIR: it
+compiles), warm_s the best of ``--repeat`` processes that load them (python: the best of as many,
+alternating with them). Lines:
 
     sweep backend=numba model=compliant N=10000 steps=1000 case_steps_per_s=... peak_mem_mb=... cold_s=... warm_s=...
     ratio sweep model=compliant N=10000 numba_over_numpy=...
     run backend=numba model=stick_slip steps=30000 cold_s=... warm_s=... processes=3 all_s=...
-    ratio run model=stick_slip steps=30000 numba_over_numpy=...   (numpy's process time over numba's, warm)
+    ratio run model=stick_slip steps=30000 numba_over_python=...   (python's process time over numba's, warm)
 
 Run: python benchmarks/backends.py [--sizes 10000] [--big 100000] [--steps 1000] [--history-steps 30000]
      [--repeat 3] [--parts compile sweep history run]
@@ -36,6 +38,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from functools import partial
 from pathlib import Path
 
 MODELS = ("compliant", "stick_slip")
@@ -65,12 +68,23 @@ def _timed(call, repeats):
     return out, times
 
 
+def _oracle():
+    """The numpy reference of the tests."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+    import oracle
+
+    return oracle
+
+
 def sweep(backend, model, n, steps, queue):
     os.environ["DCCSS_BACKEND"] = backend
     import numpy as np
 
     from dccss.excitation import Sine
     from dccss.mechanics.summaries import summarize
+
+    if backend == "numpy":
+        summarize = _oracle().summarize
 
     geometry = _geometry(n)
     Xg = Sine(0.27, 30.0, 1.0).displacement(np.arange(steps + 1) * (1.0 / steps))
@@ -86,6 +100,9 @@ def history(backend, steps, queue):
     from dccss.excitation import Sine, step_times
     from dccss.mechanics.models import stick_slip
     from dccss.paper.prototypes import DFP1
+
+    if backend == "numpy":
+        stick_slip = partial(_oracle().run, "stick_slip")
 
     dt = 0.001
     excitation = Sine(0.27, 30.0, steps * dt)
@@ -189,13 +206,13 @@ def _history(args):
 
 
 def _run(args):
-    """numpy and numba processes alternate (the same machine load for both); each backend's time is
+    """python and numba processes alternate (the same machine load for both); each backend's time is
     the best of ``--repeat`` processes, as timeit reports (the machine's noise only ever adds)."""
-    seconds = {"numpy": [], "numba": []}
+    seconds = {"python": [], "numba": []}
     with tempfile.TemporaryDirectory() as cache:  # an empty kernel cache: the first process compiles
         cold = cli_run("numba", args.history_steps, cache)
         for _ in range(args.repeat):
-            seconds["numpy"].append(cli_run("numpy", args.history_steps))
+            seconds["python"].append(cli_run("python", args.history_steps))
             seconds["numba"].append(cli_run("numba", args.history_steps, cache))
     best = {backend: min(times) for backend, times in seconds.items()}
     for backend, times in seconds.items():
@@ -203,7 +220,7 @@ def _run(args):
         print(f"run backend={backend} model=stick_slip steps={args.history_steps} {cold_s}warm_s={best[backend]:.3f} "
               f"processes={len(times)} all_s={','.join(f'{t:.2f}' for t in times)}", flush=True)
     print(f"ratio run model=stick_slip steps={args.history_steps} "
-          f"numba_over_numpy={best['numpy'] / best['numba']:.1f}", flush=True)
+          f"numba_over_python={best['python'] / best['numba']:.1f}", flush=True)
 
 
 if __name__ == "__main__":

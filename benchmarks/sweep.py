@@ -3,8 +3,9 @@
 Each measurement runs in a fresh process (so the peak resident memory is its own): N cases of
 DFP1-type devices with pad angles alpha21 spread over 6..12 deg, 1000 steps each (sine of
 0.27 m at 30 rad/s over 1 s, dt = 0.001 s), reduced to per-case summaries on the fly
-(``dccss.mechanics.summaries.summarize``) on the backend DCCSS_BACKEND names (here numpy unless set:
-benchmarks/backends.py compares the backends). Prints one line per measurement, e.g.
+(``dccss.mechanics.summaries.summarize``) on the backend DCCSS_BACKEND names, or ("numpy", the
+default here) on the tests' numpy reference (``tests/oracle.py``; benchmarks/backends.py compares
+them). Prints one line per measurement, e.g.
 
     sweep backend=numpy model=compliant N=10000 steps=1000 case_steps_per_s=1234567 peak_mem_mb=850
 
@@ -15,7 +16,9 @@ import argparse
 import multiprocessing as mp
 import os
 import resource
+import sys
 import time
+from pathlib import Path
 
 os.environ.setdefault("DCCSS_BACKEND", "numpy")  # inherited by the measuring processes
 
@@ -27,6 +30,10 @@ def measure(model, n, steps, queue):
     from dccss.mechanics.geometry import Geometry
     from dccss.mechanics.summaries import summarize
     from dccss.paper.prototypes import TABLE1
+
+    if os.environ["DCCSS_BACKEND"] == "numpy":
+        sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+        from oracle import summarize
 
     geometry = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha21": np.linspace(6.0, 12.0, n),
                                         "alpha23": np.linspace(6.0, 12.0, n)})

@@ -45,8 +45,7 @@ EXIT_CODES = {0: "written (also a history marked failed with on_failure: mark)",
 BACKEND_CHOICES = {"auto": "the kernels, compiled where the run is large enough for them to pay, interpreted "
                            "otherwise (the default; the same results to the last bit)",
                    "numba": "always the compiled kernels (an error where numba is not installed)",
-                   "python": "always the kernels interpreted, on Python numbers",
-                   "numpy": "the numpy reference, an independent implementation (equal to about 1e-13)"}
+                   "python": "always the kernels interpreted, on Python numbers"}
 
 
 def _summary(ds) -> str:

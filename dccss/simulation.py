@@ -50,8 +50,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     attrs : dict, optional
         Extra global attributes (e.g. a case id).
     progress : callable, optional
-        ``progress(n, N)``, called after each step n of N (once, when the history is done, where
-        the kernels run it: every run but those of the numpy reference, ``DCCSS_BACKEND=numpy``).
+        ``progress(n, N)``, called once, when the history is done (n of N steps: n < N where it
+        stopped at a ring).
     structure : Structure, optional
         A superstructure (friction μ, damping ζ) on the device. None: the ground displacement is
         imposed on RB1 relative to RB3, the superstructure held still in space. A structure: the

@@ -1,10 +1,10 @@
-"""How a planar run is computed: the kernels compiled, the same kernels interpreted, or the numpy reference.
+"""How a planar run is computed: the kernels compiled, or the same kernels interpreted.
 
-The planar models are written once, as the kernels of ``dccss.mechanics.compiled``: functions on
-Python numbers and tuples that Numba compiles and that also run as they are, interpreted. Both
-give the same results to the last bit (the same operations in the same order; tests/test_compiled.py),
-so the choice between them is one of speed only. The environment variable ``DCCSS_BACKEND``
-selects it:
+The planar models are written once, as kernels (``dccss.mechanics.models``, on the helpers of
+``compiled``): functions on Python numbers and tuples that Numba compiles and that also run as they
+are, interpreted. Both give the same results to the last bit (the same operations in the same
+order; tests/test_compiled.py), so the choice between them is one of speed only. The
+environment variable ``DCCSS_BACKEND`` selects it:
 
 * ``auto`` (the default): the kernels, compiled where the run is large enough for them to pay,
   interpreted otherwise. A run of N cases over T steps is large when ``T * N >= AUTO_THRESHOLD``:
@@ -13,16 +13,16 @@ selects it:
   loads the compiled kernels from the on-disk cache pays about 0.7 s (importing numba and loading
   them) and one that compiles them about 20 s, once per machine. Small runs (the paper's
   histories and breakaway sweeps) thus never wait for a compiler.
-* ``numba``: always compiled; ``python``: always interpreted;
-* ``numpy``: the numpy reference (``models``' step generators, ``summaries``), an independent
-  implementation kept to check the kernels; it agrees with them to about 1e-13 (numpy's
-  vectorised complex arithmetic rounds differently from scalar code).
+* ``numba``: always compiled; ``python``: always interpreted.
+
+(An independent numpy implementation of the same equations, which checks the kernels, is the
+tests' ``tests/oracle.py``.)
 
 The interpreted kernels do not import numba: where it is not installed, ``auto`` runs every run
 interpreted and says so once for a large one (a ``BackendWarning``).
 
-The backend used is logged (logger ``dccss.backend``; ``last`` holds the latest: "numba",
-"python" or "numpy"), not written into the datasets.
+The backend used is logged (logger ``dccss.backend``; ``last`` holds the latest: "numba" or
+"python"), not written into the datasets.
 """
 
 from __future__ import annotations
@@ -35,17 +35,15 @@ import warnings
 
 import numpy as np
 
-from . import registry
-
 ENV = "DCCSS_BACKEND"
-BACKENDS = ("auto", "numba", "python", "numpy")
+BACKENDS = ("auto", "numba", "python")
 #: ``auto`` compiles the kernels from this many case-steps on (module docstring; benchmarks/README.md)
 AUTO_THRESHOLD = 20_000
 INSTALL = "pip install numba (or the package's `compiled` extra: pip install -e '.[compiled]')"
 
 log = logging.getLogger("dccss.backend")
 _warned = False
-#: the backend of the last run dispatched in this process ("numba" or "numpy"; None before any)
+#: the backend of the last run dispatched in this process ("numba" or "python"; None before any)
 last = None
 
 
@@ -89,7 +87,7 @@ def work(steps, cases=1) -> int:
 
 
 def choose(steps, cases=1) -> str:
-    """'numba', 'python' or 'numpy' for a run of ``cases`` cases over ``steps`` steps (module docstring)."""
+    """'numba' or 'python' for a run of ``cases`` cases over ``steps`` steps (module docstring)."""
     wanted = check()
     if wanted != "auto":
         return wanted
@@ -124,16 +122,10 @@ def _load():
 
 
 def kernels(model, steps, cases=1):
-    """``(module, compiled)``: the kernels' module and whether to run them compiled, for running
-    ``model`` over this run; None where the numpy reference runs it (``numpy`` chosen, or a
-    model the kernels do not have)."""
+    """``(module, compiled)``: the kernels' driver (``compiled``) and whether to run ``model``'s kernels
+    compiled over this run."""
     global last
     choice = choose(steps, cases)
-    module = _load() if choice != "numpy" else None
-    if module is None or registry.model(model).planar is None:
-        last = "numpy"
-        log.info("backend numpy: %s, %d case(s) x %d step(s)", model, cases, steps)
-        return None
     if choice == "numba":
         try:
             importlib.import_module("numba")
@@ -144,4 +136,4 @@ def kernels(model, steps, cases=1):
             choice = "python"
     last = choice
     log.info("backend %s: %s, %d case(s) x %d step(s)", choice, model, cases, steps)
-    return module, choice == "numba"
+    return _load(), choice == "numba"

@@ -3,20 +3,21 @@ driver that runs a model's kernels (its registry entry's ``PlanarKernels``; the 
 ``models``) for one case or a batch: compiled with Numba, or the same functions interpreted
 (``compiled=False``; small runs), with the same results to the last bit.
 
-The entry points take a model's name and return what the numpy reference does:
+The entry points take a model's name and return what the numpy reference of the tests
+(``tests/oracle.py``) does:
 
-* ``run``: the histories of ``dccss.mechanics.models`` (same keys, shapes, dtypes; the same
-  ConvergenceError / SingularJacobianError messages);
-* ``summarize``: the per-case summaries of ``dccss.mechanics.summaries.summarize`` (same keys, dtypes, NaN and
-  flag conventions, capacity policies), reduced on the fly inside the compiled loop: memory
+* ``run``: the histories (same keys, shapes, dtypes; the same ConvergenceError /
+  SingularJacobianError messages);
+* ``summarize``: the per-case summaries (``dccss.mechanics.summaries``: the same keys, dtypes, NaN
+  and flag conventions, capacity policies), reduced on the fly inside the compiled loop: memory
   O(cases), no (T, N, 9) arrays.
 
 The algorithm (the helpers here, the steps in ``models``) is the reference's, row for row: the
 same constraint rows (``constraints``: the tangency rows of Eqs. 6-11, the pin rows of Eq. 32,
 the slip rows of Eq. 37), the prescribed rows set first and Newton on the contact rows over the
 free coordinates (``newton``) with the same written-out 4 x 4 solve (``linear.solve4``), the same
-test max|g| <= tol and iteration cap, the same predictors (``models._extrapolate``'s cubic for
-compliant sliding; the previous sticking and slipping increments of ``stick_slip_steps``), the
+test max|g| <= tol and iteration cap, the same predictors (the reference's ``_extrapolate`` cubic
+for compliant sliding; the previous sticking and slipping increments of ``stick_slip_steps``), the
 same theta2 wrapping, contact projection (signed or unsigned normals), jammed diagonal (A-D, or
 B-C when X_g decreases) and slip set built from the end of sticking (``slip_set``).
 
@@ -132,7 +133,7 @@ NAN9 = (NAN,) * 9
 
 @jit
 def wrapped(q, F):
-    """q with theta2 in (-pi, pi] (``models._wrapped``) and its frames ``F``."""
+    """q with theta2 in (-pi, pi] (the reference's ``_wrapped``) and its frames ``F``."""
     if abs(q[5]) <= np.pi:
         return q, F
     theta2 = q[5] - TWO_PI * np.rint(q[5] / TWO_PI)
@@ -143,7 +144,7 @@ def wrapped(q, F):
 @jit
 def extrapolate(h0, h1, h2, h3, count):
     """The cubic through the last ``count`` converged configurations h0..h3 (newest last;
-    lower orders at the start): ``models._extrapolate``, same weights and order of sums."""
+    lower orders at the start): the reference's ``_extrapolate``, same weights and order of sums."""
     if count == 1:
         return h3
     if count == 2:
@@ -363,7 +364,7 @@ def record_failure(fail, fail_g, fail_J, k, n, phase, its, status, g, J):
 # --- the sets of a step (models.py) --------------------------------------------------------
 @jit
 def slip_set(F, pad, centre, radius, dims, c1, c3, signed):
-    """The slip set (``models.slip_set``) of the diagonal c1 (on RB1), c3 (on RB3) from the
+    """The slip set (the reference's ``slip_set``) of the diagonal c1 (on RB1), c3 (on RB3) from the
     end of sticking (frames F): the set's data and R_y^3 of Eq. 41."""
     R1, e1, R2, e2, R3, e3 = F
     p1, n1, _ = _contact(local(R2, e2, pad[c1], R1, e1), centre[0], radius[0], SIDE[c1], signed)
@@ -594,7 +595,7 @@ def _no_history(kernels):
 
 def run(model, geometry, Xg, theta2_0=0.0, *, normals="signed", options=NewtonOptions(), times=None,
         stop_at_ring=False, compiled=True) -> dict:
-    """The history of ``model`` as the numpy reference's (``dccss.mechanics.models.run``): the same
+    """The history of ``model`` (``dccss.mechanics.models.run``), as the numpy reference's: the same
     keys, shapes and dtypes (compliant sliding: ``q`` (T, ..., 9); ``newton_iterations``, ``residual``
     (T, ...); ``local``, ``point``, ``normal`` (T, ..., 4) complex; ``Rx3``).
 
@@ -673,7 +674,7 @@ def _raise_capacity(batch, acc, count, shape):
 
 
 def _summaries(kernels, acc, count, capacity):
-    """The summary dict from the accumulators, as the end of ``sweep._summarize``."""
+    """The summary dict from the accumulators, as the end of the reference's ``_summarize``."""
     failure, reached = acc[..., FAILURE], acc[..., REACHED]
     out = {"theta2_max_abs": acc[..., THETA2_MAX_ABS], "theta2_end": acc[..., THETA2_END],
            "rise_max": acc[..., RISE_MAX], "rise_end": acc[..., RISE_END],

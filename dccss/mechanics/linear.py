@@ -1,18 +1,16 @@
 """The 4 x 4 solve of every Newton step, written out: Gaussian elimination with partial pivoting.
 
 One algorithm, the same operations in the same order wherever a Newton step is taken: ``solve4``
-runs interpreted (one case, ``newton``) and compiled into the kernels (``compiled`` registers these
-functions with Numba: ``scalar.compilable``), and ``solve4_batch`` repeats it elementwise over a
-stack of systems (the batched reference). So the interpreted and compiled solvers round alike, on
-every machine. LAPACK's ``gesv`` (``numpy.linalg.solve``) would not: OpenBLAS picks its kernels by
-CPU, and their fused multiply-adds round differently on another processor.
+runs interpreted and compiled into the kernels (``compiled`` registers these functions with Numba:
+``scalar.compilable``), and the tests' numpy reference repeats it elementwise over a stack of
+systems. So the interpreted and compiled solvers round alike, on every machine. LAPACK's ``gesv``
+(``numpy.linalg.solve``) would not: OpenBLAS picks its kernels by CPU, and their fused
+multiply-adds round differently on another processor.
 
 A pivot exactly 0 is singular (``ok`` False), as LAPACK's: numpy's LinAlgError('Singular matrix').
 """
 
 from __future__ import annotations
-
-import numpy as np
 
 
 def pivot(column):
@@ -77,29 +75,3 @@ def solve4(A, b):
 
 #: what the kernels compile (``scalar.compilable``)
 SCALAR = (pivot, eliminate, solve4)
-
-
-def solve4_batch(A, b):
-    """``solve4`` on a stack: A (..., 4, 4), b (..., 4) -> ok (...,), x (..., 4), each system
-    with the same operations as ``solve4`` (x is meaningless where ok is False)."""
-    M = np.concatenate([np.asarray(A, dtype=float), np.asarray(b, dtype=float)[..., None]], axis=-1)
-    ok = np.ones(M.shape[:-2], dtype=bool)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for c in range(4):
-            a = np.abs(M[..., c:, c])
-            # pivot(): the first largest; a NaN is chosen only where it is the first entry
-            p = c + np.where(np.isnan(a[..., 0]), 0, np.argmax(np.where(np.isnan(a), -1.0, a), axis=-1))
-            perm = np.broadcast_to(np.arange(4), M.shape[:-2] + (4,)).copy()
-            np.put_along_axis(perm, p[..., None], c, axis=-1)
-            perm[..., c] = p
-            M = np.take_along_axis(M, perm[..., None], axis=-2)
-            ok &= M[..., c, c] != 0.0
-            inverse = 1.0 / M[..., c, c]
-            for r in range(c + 1, 4):
-                f = M[..., r, c] * inverse
-                M[..., r, c + 1:] = M[..., r, c + 1:] - f[..., None] * M[..., c, c + 1:]
-        x3 = M[..., 3, 4] / M[..., 3, 3]
-        x2 = (M[..., 2, 4] - M[..., 2, 3] * x3) / M[..., 2, 2]
-        x1 = (M[..., 1, 4] - M[..., 1, 2] * x2 - M[..., 1, 3] * x3) / M[..., 1, 1]
-        x0 = (M[..., 0, 4] - M[..., 0, 1] * x1 - M[..., 0, 2] * x2 - M[..., 0, 3] * x3) / M[..., 0, 0]
-    return ok, np.stack([x0, x1, x2, x3], axis=-1)

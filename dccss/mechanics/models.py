@@ -1,5 +1,4 @@
-"""The paper's two kinematic models: their steps (kernels, and numpy reference steppers for one case
-or a batch of cases) and their registry entries.
+"""The paper's two kinematic models, written once as kernels, and their registry entries.
 
 Each step t_{n-1} -> t_n starts from the converged q(t_{n-1}) and
 
@@ -13,192 +12,33 @@ Each step t_{n-1} -> t_n starts from the converged q(t_{n-1}) and
 Both start from the compatible configuration at theta^2(t_0) (RB3 offset by L sin theta^2).
 X_g is (T,) for one case or (T, ...) for a batch; geometry and theta^2(t_0) may be batches too.
 
-``compliant_steps``/``stick_slip_steps`` yield one typed record per step (``CompliantStep``,
-``StickSlipStep``; a sweep summarises them on the fly); ``collect`` stacks them into whole
-histories as arrays, time first, which ``dccss.results`` turns into datasets.
-
-Each model is written here once more, as kernels: its planar case (``compliant_case``,
-``stick_slip_case``: the steps of one case on ``compiled``'s scalar helpers, interpreted or
-compiled) and its spatial step (``*_spatial_step`` on ``spatial``'s phases). Those, not the step
-generators, run the models (``backend``); the step generators stay as the numpy reference the
-tests check the kernels against.
+A model's planar steps are one case's kernel (``compliant_case``, ``stick_slip_case``: on
+``compiled``'s scalar helpers, interpreted or compiled) and its spatial steps one step function
+(``*_spatial_step``, on ``spatial``'s phases). ``run`` gives a whole history as arrays, time
+first, which ``dccss.results`` turns into datasets. The tests check the kernels against an
+independent numpy implementation of the same equations (``tests/oracle.py``).
 
 The models are data: each is a ``registry.Model`` entry, registered at the end of this module
-(name, title, stepper, step record, the diagnostics its datasets carry, the summaries its sweeps
-keep, its plot style and its kernels). Nothing outside this module names or branches on a model;
-adding a model is registering an entry.
+(name, title, kernels, the diagnostics its datasets carry, the summaries its sweeps keep and its
+plot style). Nothing outside this module names or branches on a model; adding a model is
+registering an entry.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-
 import numpy as np
 
-from . import backend, compiled, newton, scalar, spatial
+from . import backend, compiled, scalar, spatial
 from .compiled import RISE_STICK_MAX, STICK_TURN_MAX
 from .constraints import Compliant, Slipping, Sticking, diagonal
 from .kinematics import (
     CORNERS,
-    RB3,
     all_corners,
-    circle_centre,
     contact_angle,
-    contact_point,
-    dot,
-    frames,
     interpenetration,
-    local,
-    start,
 )
 from .registry import REGISTRY, Model, PlanarKernels, model, register
 from .scalar import jit
-
-
-@dataclass(frozen=True, slots=True)
-class Step:
-    """The configuration at t_n and how the solver got there (n = 0: the start, no solve)."""
-
-    n: int
-    q: np.ndarray  # (..., 9) configuration at t_n (end of the step)
-    newton_iterations: object  # int or (...,) Newton updates of the step (its last phase)
-    residual: object  # float or (...,) final max |constraint residual| (m)
-
-
-@dataclass(frozen=True, slots=True)
-class CompliantStep(Step):
-    """A compliant sliding step: also the plate-frame positions of A..D at t_n (``local``) and the
-    contact data of the step (plate-frame points and normals of A..D, complex)."""
-
-    local: tuple
-    point: tuple
-    normal: tuple
-
-
-@dataclass(frozen=True, slots=True)
-class StickSlipStep(Step):
-    """A stick-slip step: also the configuration at the end of its sticking phase (NaN at n = 0),
-    the jammed diagonal (True: B-C) and the sticking phase's solver figures."""
-
-    q_stick: np.ndarray
-    diagonal_BC: object
-    newton_iterations_stick: object
-    residual_stick: object
-
-
-def _wrapped(q):
-    """q with theta2 in (-pi, pi]: Newton may land on theta2 + 2 pi k, the same configuration."""
-    theta2 = q[..., 5]
-    if (abs(float(theta2)) <= np.pi) if q.ndim == 1 else bool(np.all(np.abs(theta2) <= np.pi)):
-        return q
-    q = q.copy()
-    q[..., 5] = theta2 - 2 * np.pi * np.round(theta2 / (2 * np.pi))
-    return q
-
-
-#: polynomial extrapolation weights from the last 1, 2, 3, 4 steps (oldest first)
-_PREDICTOR = {1: (1,), 2: (-1, 2), 3: (1, -3, 3), 4: (-1, 4, -6, 4)}
-
-
-def _extrapolate(history):
-    """Initial guess for the next step: the cubic through the last four converged steps (lower
-    orders at the start). Newton's iterates from it converge to the same solution."""
-    return sum(w * q for w, q in zip(_PREDICTOR[len(history)], history))
-
-
-def compliant_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
-                    times=None):
-    """Yield, for n = 0..T-1, {"n", "q", "local", "point", "normal", "newton_iterations",
-    "residual"}: the configuration at t_n, the plate-frame positions of A..D there, and the
-    contact data (plate-frame points and normals of A..D, complex) of the step that ends there;
-    at n = 0 those of q(t_0) itself (for |C_q| at rest)."""
-    q, Xg, Rx3 = start(geometry, Xg, theta2_0)
-    corners = all_corners(geometry)
-    F = frames(q)
-    locals_ = tuple(local(F, c) for c in corners)
-    points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
-    yield CompliantStep(0, q, 0, 0.0, locals_, points, normals_)
-    history = [q]  # the last converged configurations, newest last, for the predictor
-    for n in range(1, len(Xg)):
-        cset = Compliant(corners, Xg[n], Rx3, points, normals_)
-        result = newton.solve(cset, _extrapolate(history), options, newton.context(n, times, cset.phase))
-        q = _wrapped(result.q)
-        history = history[-3:] + [q]
-        F = frames(q)  # the next step's contact data
-        locals_ = tuple(local(F, c) for c in corners)
-        step_points, step_normals = points, normals_
-        points, normals_ = zip(*(contact_point(F, c, normals, u) for c, u in zip(corners, locals_)))
-        yield CompliantStep(n, q, result.iterations, result.residual, locals_, step_points, step_normals)
-
-
-def slip_set(geometry, corners, q_stick, normals="signed") -> Slipping:
-    """The slipping constraints (Eq. 37) built from the end-of-sticking configuration."""
-    F = frames(q_stick)
-    points, normals_ = zip(*(contact_point(F, c, normals) for c in corners))
-    C1, C3 = (circle_centre(F, c) for c in corners)
-    e = (C3 - C1) / abs(C3 - C1)
-    n12 = 1j * e
-    R3 = F[2][0]
-    cos_theta = -e.imag  # C^3 lies below C^1: e = (sin theta, -cos theta)
-    Ry3_rc = C1.imag - geometry.L * cos_theta + geometry.hs3 + geometry.R3  # Eq. 41
-    # k1: G^2 moves on the line through C^1 and C^3 (for a symmetric pad G^2 is already on it
-    # at the end of sticking, so this equals Eq. 38's G^2 . n12; for unequal caps it does not)
-    return Slipping(corners, q_stick, points, normals_, n12, dot(C1, n12), dot(R3, n12), Ry3_rc)
-
-
-def stick_slip_steps(geometry, Xg, theta2_0=0.0, *, normals="signed", options=newton.NewtonOptions(),
-                     times=None):
-    """Yield, for n = 0..T-1, {"n", "q", "q_stick", "diagonal_BC", "newton_iterations(_stick)",
-    "residual(_stick)"}: the configuration at t_n (end of slipping) and at the end of the
-    sticking phase of the step ending there (NaN at n = 0); diagonal_BC is True where B-C jammed."""
-    q, Xg, Rx3 = start(geometry, Xg, theta2_0)
-    batch = np.ndim(Xg) > 1
-    fixed = {False: diagonal(geometry, False), True: diagonal(geometry, True)}
-    yield StickSlipStep(0, q, 0, 0.0, np.full_like(q, np.nan), np.zeros(np.shape(q)[:-1], bool), 0, 0.0)
-    previous = None  # (q(t_{n-2}), q_stick(t_{n-1}), diagonal) for the predictors
-    for n in range(1, len(Xg)):
-        down = Xg[n] < Xg[n - 1]
-        corners = diagonal(geometry, down) if batch else fixed[down]
-        F = frames(q)
-        stick = Sticking(corners, Xg[n], Rx3, [local(F, c) for c in corners])
-        # predictors: the previous step's sticking and slipping increments, if on the same diagonal
-        if previous is None:
-            same, stick_guess = False, q
-        else:
-            same = (previous[2] == down)[..., None] if batch else previous[2] == down
-            stick_guess = np.where(same, q + previous[1] - previous[0], q) if batch else (
-                q + previous[1] - previous[0] if same else q)
-        r1 = newton.solve(stick, stick_guess, options, newton.context(n, times, stick.phase))
-        q_stick = _wrapped(r1.q)
-        slip = slip_set(geometry, corners, q_stick, normals)
-        slip_guess = q_stick if previous is None else (
-            np.where(same, q_stick + q - previous[1], q_stick) if batch else
-            (q_stick + q - previous[1] if same else q_stick))
-        r2 = newton.solve(slip, slip_guess, options, newton.context(n, times, slip.phase))
-        previous = (q, q_stick, down)
-        q = _wrapped(r2.q)
-        yield StickSlipStep(n, q, r2.iterations, r2.residual, q_stick, down, r1.iterations, r1.residual)
-
-
-def collect(steps) -> dict:
-    """A history from step records: each field stacked into an array, time first (contact data:
-    last axis of 4), plus ``Rx3``, the guided abscissa of RB3."""
-    rows = list(steps)
-    out = {}
-    one_case = np.ndim(rows[-1].q) == 1
-    for f in fields(rows[0]):
-        if f.name == "n":
-            continue
-        values = [getattr(r, f.name) for r in rows]
-        if one_case:  # scalars, (9,) arrays or 4-tuples: one call
-            out[f.name] = np.array(values)
-            continue
-        if isinstance(values[-1], tuple):  # contact data: one complex array per corner
-            values = [np.stack(np.broadcast_arrays(*v), axis=-1) for v in values]
-        shape = np.shape(values[-1])  # step 0 may hold scalars where later steps hold batch arrays
-        out[f.name] = np.stack([np.broadcast_to(v, shape) for v in values])
-    out["Rx3"] = out["q"][0, ..., RB3]
-    return out
 
 
 # --- what each model's datasets and summaries carry --------------------------------------------
@@ -235,13 +75,6 @@ def _stick_slip_diagnostics(history, geometry) -> dict:
     out["newton_residual_stick"] = (history["residual_stick"], "m",
                                     "final max |constraint residual| of the sticking phase")
     return out
-
-
-def _stick_slip_summary(step, previous_theta2, rise_of) -> dict:
-    """Per-step values of the stick-slip summaries: the sticking rotation (deg) and rise (m)."""
-    theta2_stick = np.degrees(step.q_stick[..., 5])
-    turn = np.abs(theta2_stick - previous_theta2) if previous_theta2 is not None else np.nan * theta2_stick
-    return {"sticking_rotation_max": turn, "rise_stick_max": rise_of(step.q_stick)}
 
 
 # --- the kernels: each model's steps, on scalars -------------------------------------------------
@@ -459,40 +292,30 @@ def stick_slip_spatial_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, m
 # --- the registry entries -----------------------------------------------------------------------
 # compliant sliding drawn wide and solid underneath, stick-slip narrow and dashed on top
 register(Model(
-    "compliant", "Compliant Sliding", compliant_steps, CompliantStep, _compliant_diagnostics, {}, {}, None,
-    ("newton_iterations",), line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2),
-    marker=dict(marker="o", ms=8, mfc="none", mew=1.8),
-    planar=PlanarKernels(compliant_case, compliant_batch, COMPLIANT_HISTORY, {}, compliant_set),
+    "compliant", "Compliant Sliding",
+    PlanarKernels(compliant_case, compliant_batch, COMPLIANT_HISTORY, {}, compliant_set), _compliant_diagnostics,
+    line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2), marker=dict(marker="o", ms=8, mfc="none", mew=1.8),
     spatial=compliant_spatial_history))
 register(Model(
-    "stick_slip", "Stick-Slip", stick_slip_steps, StickSlipStep, _stick_slip_diagnostics,
-    {"_stick": " at the end of the sticking phase"},
-    {"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
-                                         "|theta2_stick - theta2(t_n-1)|"),
-     "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
-    _stick_slip_summary, ("newton_iterations", "newton_iterations_stick"),
+    "stick_slip", "Stick-Slip",
+    PlanarKernels(stick_slip_case, stick_slip_batch, STICK_SLIP_HISTORY,
+                  {"sticking_rotation_max": STICK_TURN_MAX, "rise_stick_max": RISE_STICK_MAX}, stick_slip_set),
+    _stick_slip_diagnostics, stages={"_stick": " at the end of the sticking phase"},
+    summaries={"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
+                                                   "|theta2_stick - theta2(t_n-1)|"),
+               "rise_stick_max": ("m", "largest rise of RB3 at the end of a sticking phase")},
     line=dict(color="tab:orange", ls=(0, (4, 2)), lw=1.3, zorder=3), marker=dict(marker="D", ms=4.5, mew=0.8),
-    planar=PlanarKernels(stick_slip_case, stick_slip_batch, STICK_SLIP_HISTORY,
-                         {"sticking_rotation_max": STICK_TURN_MAX, "rise_stick_max": RISE_STICK_MAX}, stick_slip_set),
     spatial=stick_slip_spatial_history))
 MODELS = tuple(REGISTRY)
 
 
 def run(name, geometry, Xg, theta2_0=0.0, **kw) -> dict:
-    """The whole history of model ``name`` (arrays, time first; see ``collect``). Keywords as
-    for the step generators. The kernels run it, compiled or interpreted (``backend``:
-    DCCSS_BACKEND); the step generators are the numpy reference."""
-    entry = model(name)
-    found = backend.kernels(name, *backend.size(geometry, Xg, theta2_0))
-    if found is not None:
-        kernels, compiled = found
-        return kernels.run(name, geometry, Xg, theta2_0, compiled=compiled, **kw)
-    return collect(entry.steps(geometry, Xg, theta2_0, **kw))
-
-
-def steps(name, geometry, Xg, theta2_0=0.0, **kw):
-    """The step records of model ``name``, one per step."""
-    return model(name).steps(geometry, Xg, theta2_0, **kw)
+    """The whole history of model ``name``: arrays, time first (``compiled.run``: keys, keywords and
+    errors), which ``dccss.results`` turns into datasets. The kernels run it, compiled or interpreted
+    (``backend``: DCCSS_BACKEND)."""
+    model(name)  # a ValueError names the known models
+    kernels, compiled = backend.kernels(name, *backend.size(geometry, Xg, theta2_0))
+    return kernels.run(name, geometry, Xg, theta2_0, compiled=compiled, **kw)
 
 
 def compliant(geometry, Xg, theta2_0=0.0, **kw) -> dict:

@@ -1,10 +1,10 @@
 """The registry of kinematic models: a model is a ``Model`` entry, and nothing else names it.
 
-An entry holds everything that differs between models: its name and title, its numpy reference
-stepper and step record, the diagnostics its datasets carry, its summaries, its line style on
-plots, whether it has a sticking phase, and its kernels (planar: ``PlanarKernels`` for
-``compiled``; spatial: a history for ``spatial``). ``models`` defines and registers the paper's two
-models (importing ``dccss.mechanics`` registers them); a new model is one ``register`` call.
+An entry holds everything that differs between models: its name and title, its kernels (planar:
+``PlanarKernels`` for ``compiled``; spatial: a history for ``spatial``), the diagnostics its
+datasets carry, its summaries, its line style on plots and whether it has a sticking phase.
+``models`` defines and registers the paper's two models (importing ``dccss.mechanics`` registers
+them); a new model is one ``register`` call.
 This module imports nothing of the package, so every module can look a model up by name.
 """
 
@@ -40,33 +40,26 @@ class Model:
     """A kinematic model as data.
 
     name, title : identifier (files, configs) and the paper's name.
-    steps : the numpy reference stepper ``steps(geometry, Xg, theta2_0, *, normals, options, times)``.
-    record : the type of its step records.
+    planar : its planar kernels.
     diagnostics : ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``,
         the variables only this model's datasets carry (besides the configuration at the end
         of each step, which every model has).
     stages : the configurations a step stores besides its end (suffix -> long-name phrase).
-    summaries : {name: (units, long_name)} of the sweep summaries only this model has, computed
-        per step by ``summary(step, previous_theta2_deg, rise_of)`` and reduced by their max.
-    iteration_fields : the step fields that count Newton iterations (summed per step).
+    summaries : {name: (units, long_name)} of the sweep summaries only this model has (its kernels
+        reduce them: ``PlanarKernels.summary_columns``).
     line, marker : how plots draw it (matplotlib line and marker properties; empty: a spare style).
-    planar : its planar kernels (None: it runs on the numpy reference only).
     spatial : its spatial history (``spatial``'s ``history(step, ...)`` bound to its step; None: it
         does not run in space).
     """
 
     name: str
     title: str
-    steps: Callable
-    record: type
+    planar: PlanarKernels
     diagnostics: Callable
-    stages: dict
-    summaries: dict
-    summary: Callable | None
-    iteration_fields: tuple
+    stages: dict = field(default_factory=dict)
+    summaries: dict = field(default_factory=dict)
     line: dict = field(default_factory=dict)
     marker: dict = field(default_factory=dict)
-    planar: PlanarKernels | None = None
     spatial: Callable | None = None
 
     @property

@@ -27,7 +27,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import backend, models, registry, spatial
+from . import backend, registry, spatial
 from .capacity import (
     CAPACITY_POLICIES,
     IncompatibleMotion,
@@ -51,7 +51,7 @@ MOTIONS = ("planar", "spatial")
 class Run:
     """A history and how it ended.
 
-    history : the arrays of the stored steps, time first (``models.collect``, ``spatial.run``).
+    history : the arrays of the stored steps, time first (``models.run``, ``spatial.run``).
     motion : "planar" or "spatial".
     status : "completed", "stopped" (at a ring, capacity "stop") or "failed" (on_failure "mark").
     message : what ended it early ("" when completed).
@@ -155,36 +155,22 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
 
 
 def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring, progress):
-    """The planar history (``models.collect``); with ``stop_at_ring`` it ends at the first step
-    where the pad has passed a retaining ring. A ConvergenceError carries the history up to the
-    last converged step as ``err.history``. The kernels run it, compiled or interpreted
-    (``backend``; ``progress`` is then called once, at the end)."""
-    found, out = backend.kernels(model, len(Xg) - 1), None
-    if found is not None:
-        kernels, compiled = found
-        try:
-            out = kernels.run(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
-                              stop_at_ring=stop_at_ring, compiled=compiled)
-        except ConvergenceError as err:
-            out = getattr(err, "history", None)
-            raise
-        finally:
-            if progress is not None and out is not None:
-                progress(len(out["q"]) - 1, len(Xg) - 1)
-        return out
-    steps = []
+    """The planar history (``models.run``); with ``stop_at_ring`` it ends at the first step where the
+    pad has passed a retaining ring. A ConvergenceError carries the history up to the last
+    converged step as ``err.history``. The kernels run it, compiled or interpreted (``backend``);
+    ``progress`` is called once, at the end."""
+    kernels, compiled = backend.kernels(model, len(Xg) - 1)
+    out = None
     try:
-        for step in models.steps(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times):
-            steps.append(step)
-            if progress is not None:
-                progress(step.n, len(Xg) - 1)
-            if stop_at_ring and (corner_diagnostics(step.q, geometry)[1] < 0).any():
-                break  # the pad reaches a ring: stop here (or fail below) before solving further
+        out = kernels.run(model, geometry, Xg, theta2_0, normals=normals, options=options, times=times,
+                          stop_at_ring=stop_at_ring, compiled=compiled)
     except ConvergenceError as err:
-        if steps:
-            err.history = models.collect(steps)
+        out = getattr(err, "history", None)
         raise
-    return models.collect(steps)
+    finally:
+        if progress is not None and out is not None:
+            progress(len(out["q"]) - 1, len(Xg) - 1)
+    return out
 
 
 def _explain(err, geometry, out, motion, times, Xg):
