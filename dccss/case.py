@@ -60,10 +60,10 @@ import yaml
 
 from .checks import CaseError, Problems, check_keys, choice, number
 from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
+from .mechanics import registry
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
-from .mechanics.models import MODELS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .mechanics.structure import FRICTION_ON, Structure, StructureError
 from .paper.prototypes import TABLE1
@@ -326,7 +326,7 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     structure = problems.check("structure", structure_from, m["structure"])
     if structure is not None and geometry is not None:
         problems.check("structure", _device_friction, structure, geometry)
-    model = problems.check("model", choice, m["model"], "model", MODELS) if "model" in m else None
+    model = problems.check("model", choice, m["model"], "model", registry.names()) if "model" in m else None
     theta2_0 = problems.check("theta2_0", number, m["theta2_0"], "theta2_0")
     normals = problems.check("normals", choice, m["normals"], "normals", NORMALS)
     capacity = problems.check("capacity", choice, m["capacity"], "capacity", CAPACITY_POLICIES)

@@ -27,9 +27,8 @@ from ._version import __version__
 from .case import CaseError, case_from, load_case, read_yaml
 from .excitation import step_times
 from .files import write_csv, write_netcdf
-from .mechanics import backend
+from .mechanics import backend, registry
 from .mechanics.capacity import CapacityError
-from .mechanics.models import MODELS
 from .mechanics.newton import ConvergenceError
 from .mechanics.structure import G
 from .schema import schema
@@ -163,7 +162,7 @@ def _case_keys() -> list[str]:
     for key, prop in spec["properties"].items():
         text = re.split(r"(?<=\.)\s+(?=[A-Z])", " ".join(prop.get("description", "").split()))[0].rstrip(".")
         allowed = prop.get("enum") or prop.get("properties", {}).get("kind", {}).get("enum") or \
-            (MODELS if key == "model" else ())
+            (registry.names() if key == "model" else ())
         if allowed and not all(re.search(rf"\b{re.escape(str(v))}\b", text) for v in allowed):
             text += f"; {'kind: ' if 'enum' not in prop and key != 'model' else ''}one of {', '.join(allowed)}"
         if key in spec["required"]:

@@ -258,7 +258,7 @@ def _summaries() -> list[str]:
     out = ["## Study summaries {#study-summaries}", "",
            "A study's dataset (`results/studies/<name>/<name>.nc`) has a dimension `model` and one per sweep "
            "axis, and for each case:", "", "| variable | units | long name |", "|---|---|---|"]
-    rows = {**summaries.SUMMARIES, **{f"{k} (bidirectional)": v for k, v in summaries.TILT_SUMMARIES.items()},
+    rows = {**summaries.specs(), **{f"{k} (bidirectional)": v for k, v in summaries.TILT_SUMMARIES.items()},
             **structure.SUMMARIES}
     for name, (units, long_name) in rows.items():
         out.append(f"| `{name}` | {units} | {_cell(long_name)} |")

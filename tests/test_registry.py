@@ -2,9 +2,12 @@
 sweep and the study plots, interpreted and compiled, with its title and style from the entry, and
 nothing else to edit."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
+from dccss.case import CaseError, case_from
 from dccss.excitation import Sine
 from dccss.mechanics import backend, compiled, models, registry, scalar, spatial, summaries
 from dccss.mechanics.registry import Model, PlanarKernels
@@ -111,3 +114,17 @@ def test_a_name_is_registered_once_and_lookups_name_the_allowed_models(rigid):
     assert registry.names() == ("compliant", "stick_slip", "rigid")
     with pytest.raises(ValueError, match=r"model must be one of \('compliant', 'stick_slip'\) in space, got 'rigid'"):
         registry.model("rigid", spatial.in_space, " in space")
+
+
+def test_case_files_and_summaries_know_a_model_registered_after_import(rigid, monkeypatch):
+    """The names and summaries of the registry are read when used, not when the package is imported."""
+    mapping = {"prototype": "DFP1", "excitation": {"kind": "sine", "amplitude": 0.1, "omega": 6.0, "duration": 0.5},
+               "dt": 0.01, "model": "rigid"}
+    assert case_from(mapping).model == "rigid"
+    own = dataclasses.replace(RIGID, summaries={"carried_max": ("m", "largest carried displacement")})
+    monkeypatch.setitem(models.REGISTRY, "rigid", own)
+    assert summaries.specs()["carried_max"] == ("m", "largest carried displacement")
+    assert "carried_max" in summaries.model_specific() and "theta2_max_abs" not in summaries.model_specific()
+    monkeypatch.delitem(models.REGISTRY, "rigid")
+    with pytest.raises(CaseError, match="model"):
+        case_from(mapping)

@@ -16,16 +16,23 @@ from typing import NamedTuple
 
 
 class PlanarKernels(NamedTuple):
-    """A model's planar kernels (``compiled``: the module docstring gives their arguments).
+    """A model's planar kernels (``dccss.mechanics.compiled``: its docstring gives their arguments).
 
-    case : ``case(k, xg, q0, constants, flags, history_out, summary_out, status_out)``, all the
-        steps of case k (a plain function: interpreted, or compiled inlined into ``batch``).
-    batch : the same over all cases (``for k in scalar.prange(...)``), compiled with Numba.
-    history : {key: (trailing shape, dtype)} of the history arrays ``case`` fills, in the order
-        of ``history_out`` and of the histories it returns.
-    summary_columns : {summary name: column of the accumulators} of the model's own summaries.
-    constraint_set : ``constraint_set(geometry, phase, down)``: a constraint set of the failing
-        phase (0 or 1) of a step, for an error's message (``down``: the jammed diagonal is B-C).
+    Attributes
+    ----------
+    case : callable
+        ``case(k, xg, q0, constants, flags, history_out, summary_out, status_out)``: all the steps
+        of case k (a plain function: interpreted, or compiled inlined into ``batch``).
+    batch : callable
+        The same over all cases (``for k in scalar.prange(...)``), compiled with Numba.
+    history : dict
+        {key: (trailing shape, dtype)} of the history arrays ``case`` fills, in the order of
+        ``history_out`` and of the histories it returns.
+    summary_columns : dict
+        {summary name: column of the accumulators} of the model's own summaries.
+    constraint_set : callable
+        ``constraint_set(geometry, phase, down)``: a constraint set of the failing phase (0 or 1)
+        of a step, for an error's message (``down``: the jammed diagonal is B-C).
     """
 
     case: Callable
@@ -39,17 +46,26 @@ class PlanarKernels(NamedTuple):
 class Model:
     """A kinematic model as data.
 
-    name, title : identifier (files, configs) and the paper's name.
-    planar : its planar kernels.
-    diagnostics : ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``,
-        the variables only this model's datasets carry (besides the configuration at the end
-        of each step, which every model has).
-    stages : the configurations a step stores besides its end (suffix -> long-name phrase).
-    summaries : {name: (units, long_name)} of the sweep summaries only this model has (its kernels
-        reduce them: ``PlanarKernels.summary_columns``).
-    line, marker : how plots draw it (matplotlib line and marker properties; empty: a spare style).
-    spatial : its spatial history (``spatial``'s ``history(step, ...)`` bound to its step; None: it
-        does not run in space).
+    Attributes
+    ----------
+    name, title : str
+        Identifier (files, configs) and the paper's name.
+    planar : PlanarKernels
+        Its planar kernels.
+    diagnostics : callable
+        ``diagnostics(history, geometry) -> {name: (values, units, long_name[, attrs])}``: the
+        variables only this model's datasets carry (besides the configuration at the end of each
+        step, which every model has).
+    stages : dict
+        The configurations a step stores besides its end (suffix -> long-name phrase).
+    summaries : dict
+        {name: (units, long_name)} of the sweep summaries only this model has (its kernels reduce
+        them: ``PlanarKernels.summary_columns``).
+    line, marker : dict
+        How plots draw it (matplotlib line and marker properties; empty: a spare style).
+    spatial : callable or None
+        Its spatial history (``spatial.history(step, ...)`` bound to its step; None: it does not
+        run in space).
     """
 
     name: str

@@ -18,7 +18,7 @@ applied here:
 
 ``history`` returns a ``Run``: the history up to where it ended, with its status and message, the
 ring it reached and the failure; ``summaries`` the per-case summaries of a sweep
-(``summaries.SUMMARIES``), failures and rings marked per case.
+(``summaries.specs``), failures and rings marked per case.
 """
 
 from __future__ import annotations
@@ -189,7 +189,7 @@ def _explain(err, geometry, out, motion, times, Xg):
 
 def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed", options=NewtonOptions(),
               capacity="continue", times=None, progress=None) -> dict:
-    """Per-case summaries of a sweep (``summaries.SUMMARIES``): X_g (T, n) planar (or (T, ...) with
+    """Per-case summaries of a sweep (``summaries.specs``): X_g (T, n) planar (or (T, ...) with
     the cases broadcast) or (T, n, 2) spatial; geometry fields, theta2_0 and (in space) ``azimuth``
     broadcast over the cases. Policies as for ``history``, per case (``options.on_failure``: "error"
     raises the first failure, naming its case as the error's ``index``; "mark" marks it and goes on).

@@ -753,7 +753,7 @@ def diagnostics(history, geometry, prefix="") -> dict:
 
 # --- what a sweep keeps of a history --------------------------------------------------------------
 def summary(history, geometry) -> dict:
-    """The per-case summaries of a history (``dccss.mechanics.summaries.SUMMARIES``; ``runs.summaries``
+    """The per-case summaries of a history (``dccss.mechanics.summaries.specs``; ``runs.summaries``
     applies the run policies). Under bidirectional motion |theta2| is the tilt: ``theta2_max_abs`` is
     the largest tilt and ``theta2_end`` the residual tilt (>= 0); the corners A, B, C, D are the
     trailing and leading rim points of each step's section on RB1 and on RB3 (for motion along +x,

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import backend, models
+from . import backend, registry
 from .capacity import CAPACITY_POLICIES
 from .kinematics import CORNERS
 
-#: summary variable -> (units, long_name): those of every model, then each model's own
-SUMMARIES = {
+#: summary variable -> (units, long_name) of every model (a model's own: its registry entry's; all: ``specs``)
+COMMON = {
     "theta2_max_abs": ("degree", "largest |theta2| at the end of a step"),
     "theta2_end": ("degree", "residual pad rotation theta2(t_end)"),
     "rise_max": ("m", "largest rise of RB3 above its theta2 = 0 rest position, at the end of a step"),
@@ -29,15 +29,23 @@ SUMMARIES = {
     "newton_iterations_mean": ("1", "mean Newton-Raphson iterations per step"),
     "failed": ("1", "the solver failed for this case (its summaries are NaN)"),
     "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
-    **{name: spec for entry in models.REGISTRY.values() for name, spec in entry.summaries.items()},
 }
 #: the rotation summaries under bidirectional motion, where |theta2| is the pad axis's tilt (``spatial.summary``)
 TILT_SUMMARIES = {
     "theta2_max_abs": ("degree", "largest tilt of the pad axis from the vertical, at the end of a step"),
     "theta2_end": ("degree", "residual tilt of the pad axis at t_end"),
 }
-#: summaries that only some models have (NaN for the others in a combined study)
-MODEL_SPECIFIC = tuple(name for entry in models.REGISTRY.values() for name in entry.summaries)
+
+
+def specs() -> dict:
+    """Every summary variable -> (units, long_name): those of every model, then each registered model's
+    own (read when called, so that a model registered later counts)."""
+    return {**COMMON, **{name: spec for entry in registry.REGISTRY.values() for name, spec in entry.summaries.items()}}
+
+
+def model_specific() -> tuple:
+    """The summaries only some registered models have (NaN for the others in a combined study)."""
+    return tuple(name for entry in registry.REGISTRY.values() for name in entry.summaries)
 
 
 def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progress=None, **kw) -> dict:
@@ -55,7 +63,7 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     Xg = np.asarray(Xg, dtype=float)
-    models.model(model)  # a ValueError names the known models
+    registry.model(model)  # a ValueError names the known models
     kernels, compiled = backend.kernels(model, *backend.size(geometry, Xg, theta2_0))  # ``backend``
     return kernels.summarize(model, geometry, Xg, theta2_0, capacity=capacity, progress=progress,
                              compiled=compiled, **kw)

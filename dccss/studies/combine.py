@@ -7,7 +7,7 @@ import xarray as xr
 
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
-from ..mechanics.summaries import MODEL_SPECIFIC, SUMMARIES
+from ..mechanics.summaries import model_specific, specs
 from ..results import global_attrs, variable
 
 
@@ -54,12 +54,13 @@ def combine(study, chunks: dict) -> xr.Dataset:
         ds = _cases(study, model, chunks[model])
         ds = ds.drop_vars([n for n in study.axes if n in ds])
         variables = {}
-        for name in {**SUMMARIES, **STRUCTURE_SUMMARIES}:
+        summaries = specs()
+        for name in {**summaries, **STRUCTURE_SUMMARIES}:
             if name in ds:
                 variables[name] = xr.Variable(dims, ds[name].values.reshape(grid.shape), ds[name].attrs)
-            elif name in MODEL_SPECIFIC:
+            elif name in model_specific():
                 owners = ", ".join(e.title for e in REGISTRY.values() if name in e.summaries)
-                units, long_name = SUMMARIES[name]
+                units, long_name = summaries[name]
                 variables[name] = xr.Variable(dims, np.full(grid.shape, np.nan),
                                               {"units": units, "long_name": f"{long_name} ({owners} only)"})
         per_model.append(xr.Dataset(variables))

@@ -31,7 +31,7 @@ from matplotlib.transforms import ScaledTranslation
 
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
-from ..mechanics.summaries import MODEL_SPECIFIC
+from ..mechanics.summaries import model_specific
 from ..results import MODEL_TITLES, has_structure
 from .spec import layout
 
@@ -412,7 +412,7 @@ def maps(ds, marks: dict, caption: str) -> Figure:
 def _defined(ds, name, model):
     """Whether a summary exists for a model: not a stick-slip quantity of another model, and a value
     somewhere or no point the solver completed (then every point is marked failed)."""
-    if name in MODEL_SPECIFIC and name not in REGISTRY[model].summaries:
+    if name in model_specific() and name not in REGISTRY[model].summaries:
         return False
     sel = ds.sel(model=model)
     return bool(np.isfinite(sel[name].values).any() or sel["failed"].values.all())

@@ -11,7 +11,7 @@ from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
-from ..mechanics.summaries import SUMMARIES, TILT_SUMMARIES
+from ..mechanics.summaries import TILT_SUMMARIES, specs
 from ..results import variable
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
@@ -41,7 +41,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
         for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
-    names = {**SUMMARIES, **STRUCTURE_SUMMARIES, **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
+    names = {**specs(), **STRUCTURE_SUMMARIES, **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
     data = {name: variable(("case",), v, *names[name]) for name, v in out.items()}
     for flag in ("capacity_exceeded", "failed"):
         data[flag].data = data[flag].data.astype(np.int8)

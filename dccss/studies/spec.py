@@ -13,10 +13,10 @@ import numpy as np
 from ..case import excitation_from, geometry_from, newton_from, structure_from
 from ..checks import CaseError, Problems, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step
+from ..mechanics import registry
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
-from ..mechanics.models import MODELS
 from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from ..mechanics.structure import Structure, StructureError
 from ..paper.prototypes import TABLE1
@@ -232,10 +232,10 @@ def _device(proto, known):
 def _models(models):
     """The study's models, each one of the registry's."""
     if not isinstance(models, list) or not models:
-        raise StudyError(f"models: expected a non-empty list of {list(MODELS)}, got {models!r}")
+        raise StudyError(f"models: expected a non-empty list of {list(registry.names())}, got {models!r}")
     problems = Problems(dict.fromkeys(range(len(models))), StudyError)
     for i, m in enumerate(models):
-        problems.check(i, choice, m, f"models[{i}]", MODELS)
+        problems.check(i, choice, m, f"models[{i}]", registry.names())
     problems.raise_if_any()
     return models
 
