@@ -2,7 +2,7 @@
 # Time the full reproduction from empty results/ and figures/ (dependencies installed), in a
 # temporary copy of the project so the checkout is untouched, with the compiled backend's kernel
 # cache cold (an empty NUMBA_CACHE_DIR, as on a fresh clone) and warm (the same cache after
-# `python -m dccss.mechanics.compiled` compiled both kernels into it). DCCSS_BACKEND is passed on
+# `python -m dccss.mechanics` compiled the kernels into it). DCCSS_BACKEND is passed on
 # (default auto).
 #
 # Usage: bash benchmarks/workflow.sh [cold] [warm]   (default: both)
@@ -56,7 +56,8 @@ for ((r = 0; r < ${REPEAT:-1}; r++)); do
       if [ "$mode" = cold ]; then
         rm -rf "${cache:?}"/*
       else
-        PYTHONPATH="${sources[$k]}" "$root/.venv/bin/python" -m dccss.mechanics.compiled
+        PYTHONPATH="${sources[$k]}" "$root/.venv/bin/python" -m dccss.mechanics 2>/dev/null ||
+            PYTHONPATH="${sources[$k]}" "$root/.venv/bin/python" -m dccss.mechanics.compiled  # older revisions
       fi
       if [ "$k" = 0 ]; then
         # shellcheck disable=SC2086  # CHECKOUT_ARGS is split into words on purpose

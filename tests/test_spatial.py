@@ -340,3 +340,25 @@ def test_the_six_by_six_solve_is_lapacks_to_round_off_and_flags_a_singular_matri
     J[:, 5] = 0.0  # a zero column: an exactly zero pivot
     ok, _ = spatial.solve6(tuple(map(tuple, J)), tuple(g), work)
     assert not ok
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_compiled_equals_the_same_functions_interpreted_on_random_devices(model):
+    """A broken compiled kernel (a Numba typing or lowering that changes a result) is caught in the quick
+    loop: the compiled history of random devices under an elliptical two-component motion equals the
+    interpreted one to round-off."""
+    from test_properties import random_device
+
+    rng = np.random.default_rng(25)
+    for k in range(3):
+        g = random_device(rng, k % 2 == 0)
+        a = 0.3 * min(g.capacity1, g.capacity3)
+        t = np.linspace(0.0, 1.0, 41)
+        Xg = np.stack([a * np.sin(2 * np.pi * t), 0.5 * a * (1.0 - np.cos(2 * np.pi * t))], axis=-1)
+        ours, interpreted = (spatial.run(model, g, Xg, np.radians(1.0), azimuth=0.3, compiled=c) for c in (True, False))
+        assert ours.keys() == interpreted.keys()
+        for key, value in interpreted.items():
+            if value.dtype.kind == "f":
+                np.testing.assert_allclose(ours[key], value, rtol=0, atol=1e-12, err_msg=f"{model} {k} {key}")
+            else:
+                assert np.array_equal(ours[key], value), (model, k, key)

@@ -689,9 +689,8 @@ def _summaries(kernels, acc, count, capacity):
 
 
 def warm():
-    """Compile (or load) the kernels of both models, planar and spatial, into the on-disk cache:
-    e.g. once before parallel jobs that would each compile them (``python -m
-    dccss.mechanics.compiled``)."""
+    """Compile (or load) the kernels of every registered model, planar and spatial, into the on-disk
+    cache: e.g. once before parallel jobs that would each compile them (``python -m dccss.mechanics``)."""
     from . import spatial
 
     # any valid device compiles the same kernels
@@ -703,7 +702,7 @@ def warm():
         spatial.run(name, device, np.array([[0.0, 0.0], [1e-3, 0.0]]))
 
 
-if __name__ == "__main__":
+if __name__ == "__main__":  # the former command; ``python -m dccss.mechanics`` runs without runpy's warning
     from dccss.mechanics.compiled import warm as _warm  # the package's module, whose kernels are cached
 
     _warm()

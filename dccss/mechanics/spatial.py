@@ -663,7 +663,7 @@ def _unpack(rows, prefix=""):
 
 
 def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(), times=None, in_plane=False,
-        stop_at_ring=False) -> dict:
+        stop_at_ring=False, compiled=True) -> dict:
     """The history of model ``name`` under X_g (T, 2) (m), as arrays, time first.
 
     ``azimuth`` (rad): the plane of theta2_0 and the direction of a zero increment. Keys: R1, G, R3
@@ -677,7 +677,9 @@ def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(
     measure that; not a model to use).
 
     A ConvergenceError (SingularJacobianError) names the step, time, phase and largest row and
-    carries the history up to the last converged step as ``err.history``.
+    carries the history up to the last converged step as ``err.history``. ``compiled=False`` runs
+    the same functions interpreted (about 2000 steps per second: a check of the compiled kernels,
+    which agree with it to round-off, not a way to run).
     """
     entry = registry.model(name, in_space, " in space")
     Xg = _ground(Xg)
@@ -685,7 +687,7 @@ def run(name, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, options=NewtonOptions(
     T = len(Xg)
     ends, sticks, planes = np.empty((T, 24)), np.empty((T, 24)), np.empty((T, 6))
     solver, failure = np.empty((T, 4)), np.zeros(8)
-    kernel = scalar.kernel(entry.spatial)
+    kernel = scalar.kernel(entry.spatial) if compiled else entry.spatial
     done = kernel(dev, Xg, float(theta2_0), float(azimuth), float(geometry.Ry3_compatible(theta2_0)), bool(in_plane),
                    float(options.tol), int(options.max_iter), bool(stop_at_ring), ends, sticks, planes, solver, failure)
     history = _unpack(ends[:done])
