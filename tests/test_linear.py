@@ -80,3 +80,16 @@ def test_the_kernel_cache_is_named_by_every_mechanics_source(tmp_path):
     with open(copy / "linear.py", "a") as f:
         f.write("\n# a changed helper\n")
     assert scalar.source_digest(copy) != before
+
+
+def test_a_read_only_installation_caches_its_kernels_in_the_users_cache(tmp_path, monkeypatch):
+    from dccss.mechanics import scalar
+
+    package = Path(scalar.__file__).parent / "__pycache__"
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    monkeypatch.setattr(scalar.os, "access", lambda path, mode: Path(path) != package)
+    (tmp_path / "dccss" / "kernels-0123456789abcdef").mkdir(parents=True)  # an older version's kernels
+    folder = scalar.cache_folder()
+    assert folder == tmp_path / "dccss" / f"kernels-{scalar.source_digest()}"
+    assert [p.name for p in (tmp_path / "dccss").iterdir()] == []  # the older digest removed
+    assert scalar.cache_folder("/elsewhere") == Path("/elsewhere") / folder.name  # NUMBA_CACHE_DIR first

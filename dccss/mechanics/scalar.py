@@ -9,7 +9,8 @@ then compiles them inlined.
 Numba's on-disk cache of a kernel would be invalidated by a change of the kernel's own file only, not
 of the helpers it inlines from other modules. ``kernel`` therefore caches in a folder named by a
 digest of every module of ``dccss.mechanics`` (``__pycache__/kernels-<digest>`` beside this file,
-or under ``NUMBA_CACHE_DIR`` when it is set): any change of the mechanics compiles afresh.
+under ``NUMBA_CACHE_DIR`` when it is set, or in the user's cache for an installation that is not
+writable; ``cache_folder``): any change of the mechanics compiles afresh.
 """
 
 from __future__ import annotations
@@ -85,23 +86,25 @@ def source_digest(folder=Path(__file__).parent) -> str:
 
 
 def cache_folder(user=""):
-    """The kernels' cache folder, ``kernels-<source_digest()>``: under ``user`` (NUMBA_CACHE_DIR) or in
-    this package's ``__pycache__`` (older digests there are removed); None where that is not
-    writable (numba's own choice then)."""
+    """The kernels' cache folder, ``kernels-<source_digest()>``: under ``user`` (NUMBA_CACHE_DIR), else
+    in this package's ``__pycache__``, else (an installation that is not writable) in the user's
+    cache, ``$XDG_CACHE_HOME/dccss`` or ``~/.cache/dccss``. Older digests are removed there; None
+    where no folder is writable (numba's own choice then)."""
     name = f"kernels-{source_digest()}"
     if user:
         return Path(user) / name
-    parent = Path(__file__).parent / "__pycache__"
-    try:
-        parent.mkdir(exist_ok=True)
-    except OSError:
-        return None
-    if not os.access(parent, os.W_OK):
-        return None
-    for old in parent.glob("kernels-*"):
-        if old.name != name:
-            shutil.rmtree(old, ignore_errors=True)
-    return parent / name
+    home = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "dccss"
+    for parent in (Path(__file__).parent / "__pycache__", home):
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+        except OSError:
+            continue
+        if os.access(parent, os.W_OK):
+            for old in parent.glob("kernels-*"):
+                if old.name != name:
+                    shutil.rmtree(old, ignore_errors=True)
+            return parent / name
+    return None
 
 
 @jit
