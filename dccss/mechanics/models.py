@@ -80,7 +80,7 @@ def _stick_slip_diagnostics(history, geometry) -> dict:
 # --- the kernels: each model's steps, on scalars -------------------------------------------------
 @jit
 def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
-    """``models.compliant_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    """All the compliant sliding steps of case k (ground motion ``xg`` (T,), start ``q0``; the module docstring)."""
     pad, centre, radius, dims = case
     signed, tol, max_iter, mark, one_case, stop_at_ring = flags
     fail, fail_g, fail_J, done = status_out
@@ -139,7 +139,7 @@ def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out)
 
 @jit
 def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out):
-    """``models.stick_slip_steps`` for case k (ground motion ``xg`` (T,), start ``q0``)."""
+    """All the stick-slip steps of case k (ground motion ``xg`` (T,), start ``q0``; the module docstring)."""
     pad, centre, radius, dims = case
     signed, tol, max_iter, mark, one_case, stop_at_ring = flags
     fail, fail_g, fail_J, done = status_out
@@ -260,7 +260,7 @@ def compliant_spatial_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter,
 
 @jit
 def stick_slip_spatial_step(dev, pose, R1, e1, m, guide, in_plane, tol, max_iter, work):
-    """One stick-slip step (as ``compliant_step``): sticking, then slipping from its end."""
+    """One stick-slip step (as ``compliant_spatial_step``): sticking, then slipping from its end."""
     v1, v3 = spatial.pinned(pose, dev, m)
     stick = spatial.sticking_phase(dev, pose, R1, guide, v1, v3)
     x, its1, res1, status, g = spatial.newton(spatial.sticking_rows, stick, spatial.guess(pose, R1), tol, max_iter,
