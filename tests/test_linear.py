@@ -1,6 +1,7 @@
 """The written-out 4 x 4 solve (mechanics.linear): it solves, it finds the singular systems LAPACK
 finds, and the batched and compiled forms round as the scalar one, bit for bit."""
 
+import os
 import shutil
 from pathlib import Path
 
@@ -93,3 +94,26 @@ def test_a_read_only_installation_caches_its_kernels_in_the_users_cache(tmp_path
     assert folder == tmp_path / "dccss" / f"kernels-{scalar.source_digest()}"
     assert [p.name for p in (tmp_path / "dccss").iterdir()] == []  # the older digest removed
     assert scalar.cache_folder("/elsewhere") == Path("/elsewhere") / folder.name  # NUMBA_CACHE_DIR first
+
+
+def test_the_determinant_is_lapacks_to_round_off_and_rounds_alike_on_every_processor():
+    """|C_q| in the datasets (Fig. 7 plots it) comes from ``linear.det``, not LAPACK's getrf, whose
+    OpenBLAS kernels round by CPU: a process told to use another core's kernels gives the same bits."""
+    import subprocess
+    import sys
+
+    rng = np.random.default_rng(7)
+    A = rng.normal(size=(200, 9, 9))
+    ours = linear.det(A)
+    hadamard = np.prod(np.linalg.norm(A, axis=-2), axis=-1)  # |det| <= the product of the column norms
+    assert np.all(np.abs(ours - np.linalg.det(A)) <= 1e-13 * hadamard)
+    swap = np.eye(9)[[1, 0, 2, 3, 4, 5, 6, 7, 8]]
+    assert linear.det(swap) == -1.0 and linear.det(np.eye(9)) == 1.0
+    singular = A[0].copy()
+    singular[:, 4] = 0.0
+    assert linear.det(singular) == 0.0
+    code = ("import numpy as np; from dccss.mechanics import linear; "
+            "print(linear.det(np.random.default_rng(7).normal(size=(200, 9, 9))).tobytes().hex())")
+    env = {**os.environ, "OPENBLAS_CORETYPE": "Katmai"}
+    other = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    assert other.stdout.strip() == ours.tobytes().hex()

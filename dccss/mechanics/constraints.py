@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from .kinematics import Corner, dot, frames, turn
+from .linear import det
 
 Q_NAMES = ("Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3", "theta3")
 DIAGONALS = ("AD", "BC")
@@ -138,7 +139,7 @@ class ConstraintSet:
 
     def determinant(self, q):
         """|C_q| in the paper's row and column order."""
-        return np.linalg.det(self.jacobian(q))
+        return det(self.jacobian(q))
 
 
 _NINE_ROWS = (("q", 0), ("q", 1), ("q", 2), ("g", 0), ("g", 1), ("g", 2), ("g", 3), ("q", 6), ("q", 8))

@@ -12,6 +12,8 @@ A pivot exactly 0 is singular (``ok`` False), as LAPACK's: numpy's LinAlgError('
 
 from __future__ import annotations
 
+import numpy as np
+
 
 def pivot(column):
     """Partial pivoting: the index of the largest |entry| of a column (the first on ties, as
@@ -75,3 +77,30 @@ def solve4(A, b):
 
 #: what the kernels compile (``scalar.compilable``)
 SCALAR = (pivot, eliminate, solve4)
+
+
+def det(A):
+    """Determinant of a stack of square matrices (..., n, n): Gaussian elimination with partial
+    pivoting (the first largest |entry|), the product of the pivots signed by the row swaps, in
+    elementwise numpy arithmetic, which rounds alike on every processor (LAPACK's ``getrf`` behind
+    ``numpy.linalg.det`` runs OpenBLAS kernels chosen by CPU). 0 where a pivot is exactly 0."""
+    A = np.asarray(A, dtype=float)
+    shape, n = A.shape[:-2], A.shape[-1]
+    M = A.reshape(-1, n, n).copy()
+    cases = np.arange(len(M))
+    out = np.ones(len(M))
+    for c in range(n):
+        p = c + np.argmax(np.abs(M[:, c:, c]), axis=-1)
+        swapped = p != c
+        if swapped.any():
+            row = M[cases, c].copy()
+            M[cases, c] = M[cases, p]
+            M[cases, p] = row
+            out = np.where(swapped, -out, out)
+        pivot = M[:, c, c]
+        singular = pivot == 0.0
+        out = np.where(singular, 0.0, out * pivot)
+        if c + 1 < n:
+            f = M[:, c + 1:, c] / np.where(singular, 1.0, pivot)[:, None]
+            M[:, c + 1:, c + 1:] = M[:, c + 1:, c + 1:] - f[:, :, None] * M[:, None, c, c + 1:]
+    return out.reshape(shape)

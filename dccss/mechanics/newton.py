@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .constraints import Q_NAMES
+from .linear import det
 
 
 class ConvergenceError(RuntimeError):
@@ -83,7 +84,7 @@ def _where(context, index) -> str:
 def raise_singular(cset, J, context, index):
     raise SingularJacobianError(
         f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
-        f"|C_q| = {float(np.linalg.det(J[index])):.3e}. The constraints do not fix the free "
+        f"|C_q| = {float(det(J[index])):.3e}. The constraints do not fix the free "
         f"coordinates {[Q_NAMES[k] for k in cset.free]} here.",
         "Check the geometry (pad wider than its plate, tan alpha = A/B) and the step size.", index)
 
