@@ -24,9 +24,8 @@ def rigid_case(k, xg, q0, constants, flags, history_out, summary_out, status_out
     fail, fail_g, fail_J, done = status_out
     hq, hits, hres = history_out
     now, acc_all, count_all, capacity = summary_out
-    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
-    acc = acc_all[k].copy() if summarise else np.empty(0)
-    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
+    record = hq.shape[0] > 0
+    acc, count, summarise = compiled.case_summaries(k, acc_all, count_all)
     for n in range(len(xg)):
         q = (xg[n], q0[1], q0[2], xg[n] + (q0[3] - q0[0]), q0[4], q0[5], xg[n] + (q0[6] - q0[0]), q0[7], q0[8])
         if record:
@@ -38,9 +37,7 @@ def rigid_case(k, xg, q0, constants, flags, history_out, summary_out, status_out
             compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius, dims, 0,
                                     capacity)
         done[k] = n + 1
-    if summarise:
-        acc_all[k] = acc
-        count_all[k] = count
+    compiled.keep_summaries(k, acc_all, count_all, acc, count)
 
 
 def rigid_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):

@@ -470,12 +470,35 @@ def distances(u, centre):
     return (abs(u[0] - centre[0]), abs(u[1] - centre[0]), abs(u[2] - centre[1]), abs(u[3] - centre[1]))
 
 
-# --- the two models, one case at a time ----------------------------------------------------
+# --- what every model's case kernel starts and ends with --------------------------------------
 @jit
 def case_constants(k, pad, centre, radius, dims):
     """Case k's geometry as tuples (module docstring)."""
     return ((pad[k, 0], pad[k, 1], pad[k, 2], pad[k, 3]), (centre[k, 0], centre[k, 1]),
             (radius[k, 0], radius[k, 1]), (dims[k, 0], dims[k, 1], dims[k, 2], dims[k, 3], dims[k, 4]))
+
+
+@jit
+def configuration(q0):
+    """A start q0 (9,) as the 9-tuple the kernels step."""
+    return (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+
+
+@jit
+def case_summaries(k, acc_all, count_all):
+    """Case k's summary accumulators, copies that ``keep_summaries`` writes back, and whether the run
+    keeps summaries: (acc, count, summarise)."""
+    if acc_all.shape[0] > 0:
+        return acc_all[k].copy(), count_all[k].copy(), True
+    return np.empty(0), np.empty(0, np.int64), False
+
+
+@jit
+def keep_summaries(k, acc_all, count_all, acc, count):
+    """Write case k's accumulators back (nothing where the run keeps no summaries)."""
+    if acc.shape[0] > 0:
+        acc_all[k] = acc
+        count_all[k] = count
 
 
 # --- Python entry points -------------------------------------------------------------------
@@ -576,8 +599,8 @@ class _Batch:
 
 
 def _kernels(model, normals, options):
-    """The planar kernels of ``model`` (a ValueError names the models that have them), inputs checked."""
-    entry = registry.model(model, lambda entry: entry.planar is not None, " on the planar kernels")
+    """The planar kernels of ``model`` (a ValueError names the registered models), inputs checked."""
+    entry = registry.model(model)
     if normals not in NORMALS:
         raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
     if not isinstance(options, NewtonOptions):

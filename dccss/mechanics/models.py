@@ -86,10 +86,9 @@ def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out)
     fail, fail_g, fail_J, done = status_out
     hq, hits, hres, hlocal, hpoint, hnormal = history_out  # the order of ``COMPLIANT_HISTORY``
     now, acc_all, count_all, capacity = summary_out
-    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
-    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
-    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
-    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    record = hq.shape[0] > 0
+    acc, count, summarise = compiled.case_summaries(k, acc_all, count_all)
+    q = compiled.configuration(q0)
     Rx3 = q[6]
     u = compiled.plate_positions(compiled.frames(q), pad)
     points, normals, distance = compiled.contacts(u, centre, radius, signed)
@@ -132,9 +131,7 @@ def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out)
         done[k] = n + 1
         if stop_at_ring and compiled.beyond_ring(u, dims):
             break
-    if summarise:
-        acc_all[k] = acc
-        count_all[k] = count
+    compiled.keep_summaries(k, acc_all, count_all, acc, count)
 
 
 @jit
@@ -145,10 +142,9 @@ def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out
     fail, fail_g, fail_J, done = status_out
     hq, hits, hres, hq_stick, hdiagonal, hits_stick, hres_stick = history_out  # ``STICK_SLIP_HISTORY``
     now, acc_all, count_all, capacity = summary_out
-    record, summarise = hq.shape[0] > 0, acc_all.shape[0] > 0
-    acc = acc_all[k].copy() if summarise else np.empty(0)  # this case's summaries, written back at the end
-    count = count_all[k].copy() if summarise else np.empty(0, np.int64)
-    q = (q0[0], q0[1], q0[2], q0[3], q0[4], q0[5], q0[6], q0[7], q0[8])
+    record = hq.shape[0] > 0
+    acc, count, summarise = compiled.case_summaries(k, acc_all, count_all)
+    q = compiled.configuration(q0)
     Rx3 = q[6]
     if record:
         for i in range(9):
@@ -206,9 +202,7 @@ def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out
         done[k] = n + 1
         if stop_at_ring and compiled.beyond_ring(u, dims):
             break
-    if summarise:
-        acc_all[k] = acc
-        count_all[k] = count
+    compiled.keep_summaries(k, acc_all, count_all, acc, count)
 
 
 def compliant_batch(Xg, q0, pad, centre, radius, dims, flags, history_out, summary_out, status_out):

@@ -15,6 +15,7 @@ writable; ``cache_folder``): any change of the mechanics compiles afresh.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 import os
@@ -85,12 +86,18 @@ def source_digest(folder=Path(__file__).parent) -> str:
     return digest.hexdigest()[:16]
 
 
+@functools.cache
+def _package_digest() -> str:
+    """``source_digest`` of this package's mechanics, read once per process."""
+    return source_digest()
+
+
 def cache_folder(user=""):
     """The kernels' cache folder, ``kernels-<source_digest()>``: under ``user`` (NUMBA_CACHE_DIR), else
     in this package's ``__pycache__``, else (an installation that is not writable) in the user's
     cache, ``$XDG_CACHE_HOME/dccss`` or ``~/.cache/dccss``. Older digests are removed there; None
     where no folder is writable (numba's own choice then)."""
-    name = f"kernels-{source_digest()}"
+    name = f"kernels-{_package_digest()}"
     if user:
         return Path(user) / name
     home = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "dccss"

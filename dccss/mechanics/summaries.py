@@ -63,7 +63,6 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     if capacity not in CAPACITY_POLICIES:
         raise ValueError(f"capacity must be one of {CAPACITY_POLICIES}, got {capacity!r}")
     Xg = np.asarray(Xg, dtype=float)
-    registry.model(model)  # a ValueError names the known models
     kernels, compiled = backend.kernels(model, *backend.size(geometry, Xg, theta2_0))  # ``backend``
     return kernels.summarize(model, geometry, Xg, theta2_0, capacity=capacity, progress=progress,
                              compiled=compiled, **kw)
