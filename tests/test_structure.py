@@ -206,6 +206,106 @@ def test_the_circular_interaction_holds_at_every_step(mu, zeta):
     assert np.max(np.abs(r.stroke[:, 0] - x.stroke[:, 0])) > 1e-3
 
 
+def _slide_alone(y0, end, load, stop):
+    """The two-component integrator alone over [0, end] from y0 = (u, u̇), interpreted."""
+    from dccss.mechanics import structure
+
+    y, K = list(y0), [0.0] * ((structure.STAGES + 1) * structure.SIZE)
+    ended, when, _ = structure._integrate(y, end, 0.0, load, False, stop, structure.RTOL, structure.ATOL,
+                                          *structure._tableau(False), K, [0.0] * 4, [0.0] * 4)
+    return ended, when, np.array(y)
+
+
+def _circular(load):
+    """scipy's right-hand side of the circular interaction under the load (b0, b1, ω², 2ζω, μ g)."""
+    b0, b1, w2, damp, friction = np.array(load[:2]), np.array(load[2:4]), *load[4:]
+
+    def rhs(t, y):
+        f, v = -(b0 + b1 * t) - w2 * y[:2], y[2:]
+        return np.concatenate([v, f - damp * v - friction * v / np.hypot(*v)])
+    return rhs
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.05])
+def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
+    """dccss's DOP853 against scipy's solve_ivp (DOP853, the same tolerances) on a slide whose velocity
+    turns under a load across it, and on one that comes to rest along a curve: the same state to
+    1e-12 m and m/s, and the same time of rest to 1e-10 s."""
+    from scipy.integrate import solve_ivp
+
+    from dccss.mechanics.structure import ATOL, NONE, REST_SPEED, RTOL, STOP
+
+    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G)
+    y0 = [0.01, -0.02, 0.3, 0.1]
+    ended, when, y = _slide_alone(y0, 0.5, load, stop=False)
+    ours = solve_ivp(_circular(load), (0.0, 0.5), y0, method="DOP853", rtol=RTOL, atol=ATOL)
+    assert (ended, when) == (NONE, 0.5)
+    assert np.max(np.abs(y - ours.y[:, -1])) < 1e-12
+    turned = math.degrees(math.atan2(y[3], y[2]) - math.atan2(y0[3], y0[2]))
+    assert abs(turned) > 30.0  # a curved path, not a line
+
+    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G)
+    y0 = [0.05, -0.03, 0.2, 0.1]
+
+    def rest(t, y):
+        return math.hypot(y[2], y[3]) - REST_SPEED
+    rest.terminal, rest.direction = True, -1
+    ended, when, y = _slide_alone(y0, 2.0, load, stop=True)
+    ref = solve_ivp(_circular(load), (0.0, 2.0), y0, method="DOP853", rtol=RTOL, atol=ATOL, events=rest)
+    assert ended == STOP and ref.status == 1
+    assert abs(when - ref.t_events[0][0]) < 1e-10
+    assert np.max(np.abs(y - ref.y_events[0][0])) < 1e-12
+    assert abs(math.hypot(y[2], y[3]) - REST_SPEED) < 1e-14  # located on the event
+    turned = math.degrees(math.atan2(y[3], y[2]) - math.atan2(y0[3], y0[2]))
+    assert abs(turned) > 30.0
+
+
+def _pair_response(scale=1.5, mu=0.04, zeta=0.02):
+    pair = RecordPair.from_files([f"{RECORDS}/synthetic.AT2", f"{RECORDS}/synthetic_y.AT2"], scale=scale)
+    r = solve(pair.ground_acceleration(), pair.time, L, mu, zeta)
+    return np.column_stack([r.stroke, r.velocity, r.z, r.sticking])
+
+
+def test_the_two_component_response_does_not_depend_on_the_processors_blas(monkeypatch):
+    """No BLAS in the two-component integration (whose kernels OpenBLAS chooses by processor): the
+    same bits under OpenBLAS' oldest kernels (Katmai) in another process."""
+    import os
+    import subprocess
+    import sys
+
+    monkeypatch.setenv("DCCSS_BACKEND", "python")
+    ours = _pair_response()
+    code = ("import sys; sys.path.insert(0, 'tests'); from test_structure import _pair_response; "
+            "print(_pair_response().tobytes().hex())")
+    env = {**os.environ, "OPENBLAS_CORETYPE": "Katmai", "DCCSS_BACKEND": "python"}
+    other = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    assert other.stdout.strip() == ours.tobytes().hex()
+
+
+@pytest.mark.slow
+def test_the_two_component_response_compiled_equals_interpreted(monkeypatch):
+    """The integrator compiled (a long record) and interpreted (a short one) give the same bits."""
+    from dccss.mechanics import backend
+
+    results = []
+    for name in ("python", "numba"):
+        monkeypatch.setenv("DCCSS_BACKEND", name)
+        results.append([_pair_response(scale, mu, zeta) for scale, mu, zeta in ((1.5, 0.04, 0.0), (2.0, 0.1, 0.05))])
+        assert backend.choose(1000, 25) == name
+    for interpreted, compiled in zip(*results):
+        assert np.array_equal(interpreted, compiled)
+
+
+def test_a_two_component_step_that_cannot_meet_the_tolerance_is_an_error_naming_the_time(monkeypatch):
+    from dccss.mechanics import structure
+
+    monkeypatch.setenv("DCCSS_BACKEND", "python")
+    monkeypatch.setattr(structure, "RTOL", 1e-30)
+    monkeypatch.setattr(structure, "ATOL", 1e-40)
+    with pytest.raises(RuntimeError, match=r"step fell below 1e-14 s in the sample interval at t = [0-9.]+ s"):
+        _pair_response()
+
+
 # --- the ground acceleration of each excitation --------------------------------------------------
 
 def test_a_sine_drives_the_structure_with_its_second_derivative():

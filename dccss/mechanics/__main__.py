@@ -1,5 +1,5 @@
 """``python -m dccss.mechanics``: compile (or load) every registered model's kernels, planar and spatial,
-into the on-disk cache, e.g. once before parallel jobs that would each compile them."""
+and the isolated structure's into the on-disk cache, e.g. once before parallel jobs that would each compile them."""
 
 from dccss.mechanics.compiled import warm
 

@@ -26,11 +26,16 @@ displacement table's piecewise-constant acceleration).
   bisection to the last bit; sticking ends where a straight line reaches ±μ g (exact). The
   solution is exact to rounding: no time step, no elastic branch.
 * Two components (the circular interaction, z a vector): the sliding equation is nonlinear
-  (ü = -a_g - ω² u - 2 ζ ω u̇ - μ g u̇ / |u̇|), integrated by scipy's DOP853 (relative tolerance
-  1e-11, absolute 1e-13 m and m/s) on each interval, with sticking as an event: a phase of
-  sliding ends where |u̇| falls to 1e-9 m/s (the rest of the way to rest takes at most
-  1e-9 / (μ g - |f|) s, and moves the structure less than 1e-17 m), and sticking ends where |f|,
-  a quadratic in t on an interval, reaches μ g (exact).
+  (ü = -a_g - ω² u - 2 ζ ω u̇ - μ g u̇ / |u̇|), integrated by DOP853 (the Runge-Kutta pair of order 8
+  of Hairer, Nørsett and Wanner, with scipy's tableau and step-size control; relative tolerance
+  ``RTOL``, absolute ``ATOL`` in m and m/s), with sticking as an event: a phase of sliding ends
+  where |u̇| falls to 1e-9 m/s (the rest of the way to rest takes at most 1e-9 / (μ g - |f|) s,
+  and moves the structure less than 1e-17 m), and sticking ends where |f|, a quadratic in t on an
+  interval, reaches μ g (exact; in two components sticking holds while |f| <= μ g (1 + ``RTOL``),
+  so that a stop where the force equals the friction to within the integration's accuracy is
+  not decided by rounding). The integrator (``plane``) is written for Numba like the device's
+  kernels: compiled for a long record, interpreted for a short one, with the same bits, on any
+  processor (no BLAS).
 """
 
 from __future__ import annotations
@@ -40,6 +45,8 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+
+from . import scalar
 
 G = 9.80665  # standard gravity (m/s²)
 #: a stop in two components: |u̇| (m/s) below which the structure is at rest
@@ -327,121 +334,219 @@ def _line(time, a0, a1, omega, zeta, friction):
 
 
 # --- two components: the circular interaction -------------------------------------------------
+#
+# ``plane`` is written in the scalar subset Numba compiles (``scalar.jit``): the same function runs
+# interpreted for a short record and compiled for a long one (``backend``), with the same result to
+# the last bit: plain IEEE arithmetic in a fixed order, no BLAS (whose kernels the processor
+# chooses) and no libm but ``pow``. Its integrator is DOP853 (Hairer, Nørsett and Wanner: 12 stages
+# of order 8, with error estimators of orders 5 and 3; scipy's tableau and step-size control), its
+# step carried from one sample interval to the next while the structure slides; an event (rest, or
+# the end of a start from rest) is located by bisecting the step's length to 4 ε s, each trial a
+# DOP853 step from the step's start.
 
-def _plane(ground: Ground, omega, zeta, friction):
-    """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2) and sticking."""
-    time, a0, a1 = ground
-    n = time.size
-    u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
-    stick = np.zeros(n, dtype=bool)
-    x, w = np.zeros(2), np.zeros(2)
-    demand = -a0[0]
-    sliding = friction == 0.0 or math.hypot(*demand) > friction
-    stick[0] = not sliding
-    z[0] = demand / friction if not sliding else _direction(w, demand, friction)
-    for k in range(n - 1):
-        h = time[k + 1] - time[k]
-        tau, phases = 0.0, 0
-        while tau < h:
-            phases = _count(phases, time[k])
-            b0, b1 = a0[k] + a1[k] * tau, a1[k]
-            end = h - tau
-            if not sliding:
-                when = _breakaway(-b0 - omega**2 * x, -b1, friction, end)
-                tau += when if when >= 0.0 else end
-                sliding = when >= 0.0
-                continue
-
-            y0 = np.concatenate([x, w])
-            if friction > 0.0 and not w.any():
-                # a start from rest: u̇ grows along the force, whose direction u̇ / |u̇| takes within
-                # a vanishing time; until |u̇| reaches START_SPEED the friction is taken along the
-                # force (exact along a line), which spares the integrator the direction of a
-                # velocity that is only rounding
-                sol = _integrate(y0, b0, b1, omega, zeta, friction, end, start=True)
-                if sol.status == 1 and sol.t_events[1].size:  # the force fell back within the cone: rest
-                    when = float(sol.t_events[1][0])
-                    x, tau, sliding = sol.y_events[1][0][:2].copy(), tau + when, False
-                    continue
-                if sol.status == 1:
-                    when = float(sol.t_events[0][0])
-                    y0, tau, end = sol.y_events[0][0].copy(), tau + when, end - when
-                    b0 = b0 + b1 * when
-                else:
-                    x, w, tau = sol.y[:2, -1].copy(), sol.y[2:, -1].copy(), h
-                    continue
-            sol = _integrate(y0, b0, b1, omega, zeta, friction, end, start=False)
-            if sol.status == 1:  # at rest: the last REST_SPEED at the deceleration there, to first order
-                y = sol.y_events[0][0]
-                when = float(sol.t_events[0][0])
-                speed = math.hypot(y[2], y[3])
-                force = -(b0 + b1 * when) - omega**2 * y[:2]
-                slowing = friction + 2 * zeta * omega * speed - force @ y[2:] / speed
-                last = min(speed / slowing, end - when) if slowing > 0.0 else 0.0
-                x, w = y[:2] + 0.5 * last * y[2:], np.zeros(2)
-                when += last
-                tau += when
-                force = -(b0 + b1 * when) - omega**2 * x
-                sliding = math.hypot(*force) > friction
-                continue
-            x, w = sol.y[:2, -1].copy(), sol.y[2:, -1].copy()
-            tau = h
-        u[k + 1], v[k + 1] = x, w
-        force = -(a0[k] + a1[k] * h) - omega**2 * x
-        stick[k + 1] = not sliding
-        z[k + 1] = force / friction if not sliding else _direction(w, force, friction)
-    return u, v, z, stick
+#: DOP853's stages, and the size of the state y = (u, u̇) in two components
+STAGES, SIZE = 12, 4
+#: what ends a slide: none (the interval's end), |u̇| falling to REST_SPEED (stop), or for a start from
+#: rest |u̇| reaching START_SPEED (moving) or the force falling back to μ g (held); a step too short
+NONE, STOP, MOVING, HELD, TOO_SHORT = 0, 1, 2, 3, 4
+#: the step-size control (scipy's): safety factor, the bounds of a step's change, the error's exponent
+SAFETY, MIN_FACTOR, MAX_FACTOR, EXPONENT = 0.9, 0.2, 10.0, -1.0 / 8.0
+#: a step shorter than this (s) is a failure; an event is located to within BRACKET (s)
+MIN_STEP, BRACKET = 1e-14, 4 * 2.220446049250313e-16
+#: the cost of a sample interval interpreted, in the planar kernels' case-steps (``backend.choose``):
+#: about 0.5 ms
+INTERVAL_WORK = 25
+#: plane's status: done, the friction chatters (MAX_PHASES), a step too short
+DONE, CHATTER, FAILED = 0, 1, 2
 
 
-def _integrate(y0, b0, b1, omega, zeta, friction, end, *, start):
-    """DOP853 over one interval of sliding from y0 = (u, u̇) (shifted to tau = 0 with the load
-    -b0 - b1 tau), stopped at rest (|u̇| = REST_SPEED, falling) or, for a ``start`` from rest, where
-    |u̇| reaches START_SPEED (event 0) or the force falls back to μ g (event 1)."""
-    from scipy.integrate import solve_ivp
+def _tableau(compiled):
+    """DOP853's A (row-major), B, C, E3 and E5 (scipy.integrate.DOP853's): numpy arrays for the compiled
+    kernel, lists (faster to index) interpreted."""
+    from scipy.integrate import DOP853
 
-    def force(t, y):
-        return -(b0 + b1 * t) - omega**2 * y[:2]
-
-    def rhs(t, y):
-        f = force(t, y)
-        along = f if start else y[2:]
-        size = math.hypot(along[0], along[1])
-        z = along / size if size > 0.0 else along
-        return np.concatenate([y[2:], f - 2 * zeta * omega * y[2:] - friction * z])
-
-    def moving(t, y):
-        return math.hypot(y[2], y[3]) - START_SPEED
-
-    def held(t, y):
-        f = force(t, y)
-        return math.hypot(f[0], f[1]) - friction
-
-    def rest(t, y):
-        return math.hypot(y[2], y[3]) - REST_SPEED
-
-    moving.terminal, moving.direction = True, 1
-    held.terminal, held.direction = True, -1
-    rest.terminal, rest.direction = True, -1
-    events = (moving, held) if start else (rest if friction > 0.0 else None)
-    return solve_ivp(rhs, (0.0, end), y0, method="DOP853", rtol=RTOL, atol=ATOL, events=events)
+    arrays = [np.ascontiguousarray(c, dtype=float).ravel() for c in (DOP853.A, DOP853.B, DOP853.C, DOP853.E3,
+                                                                      DOP853.E5)]
+    assert [a.size for a in arrays] == [STAGES * STAGES, STAGES, STAGES, STAGES + 1, STAGES + 1]
+    return tuple(arrays) if compiled else tuple(a.tolist() for a in arrays)
 
 
-def _direction(velocity, force, friction):
-    """The friction state z of sliding: u̇ / |u̇|, or at rest (the start of sliding) the force's direction."""
-    if friction == 0.0:
-        return np.zeros(2)
-    speed = math.hypot(velocity[0], velocity[1])
-    if speed > 0.0:
-        return velocity / speed
-    size = math.hypot(force[0], force[1])
-    return force / size if size > 0.0 else np.zeros(2)
+@scalar.jit
+def _force(t, y, load):
+    """f = -a_g - ω² u at t (from the slide's start) and y, the ground's acceleration from there
+    b0 + b1 t; load = (b0x, b0y, b1x, b1y, ω², 2ζω, μ g)."""
+    return -(load[0] + load[2] * t) - load[4] * y[0], -(load[1] + load[3] * t) - load[4] * y[1]
 
 
-def _breakaway(d0, d1, friction, end):
+@scalar.jit
+def _rhs(t, y, row, K, load, start):
+    """K[row] = dy/dt: u̇ and ü = f - 2ζω u̇ - μ g z, z the direction of u̇ (of f for a ``start`` from rest)."""
+    f0, f1 = _force(t, y, load)
+    d0, d1 = (f0, f1) if start else (y[2], y[3])
+    size = math.sqrt(d0 * d0 + d1 * d1)
+    if size > 0.0:
+        d0, d1 = d0 / size, d1 / size
+    at = row * SIZE
+    K[at] = y[2]
+    K[at + 1] = y[3]
+    K[at + 2] = f0 - load[5] * y[2] - load[6] * d0
+    K[at + 3] = f1 - load[5] * y[3] - load[6] * d1
+
+
+@scalar.jit
+def _step(t, y, h, K, out, trial, load, start, A, B, C):
+    """One DOP853 step of length h from (t, y), K[0] the derivative there: out = y(t + h), the stages in
+    K, K[STAGES] the derivative at t + h."""
+    for s in range(1, STAGES):
+        for c in range(SIZE):
+            acc = 0.0
+            for j in range(s):
+                acc += K[j * SIZE + c] * A[s * STAGES + j]
+            trial[c] = y[c] + acc * h
+        _rhs(t + C[s] * h, trial, s, K, load, start)
+    for c in range(SIZE):
+        acc = 0.0
+        for j in range(STAGES):
+            acc += K[j * SIZE + c] * B[j]
+        out[c] = y[c] + h * acc
+    _rhs(t + h, out, STAGES, K, load, start)
+
+
+@scalar.jit
+def _error(y, out, h, K, rtol, atol, E3, E5):
+    """The step's error norm (scipy's DOP853: the order-5 estimate, damped by the order-3 one)."""
+    e5, e3 = 0.0, 0.0
+    for c in range(SIZE):
+        scale = atol + max(abs(y[c]), abs(out[c])) * rtol
+        s5, s3 = 0.0, 0.0
+        for j in range(STAGES + 1):
+            s5 += K[j * SIZE + c] * E5[j]
+            s3 += K[j * SIZE + c] * E3[j]
+        s5, s3 = s5 / scale, s3 / scale
+        e5 += s5 * s5
+        e3 += s3 * s3
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    return h * e5 / math.sqrt((e5 + 0.01 * e3) * SIZE)
+
+
+@scalar.jit
+def _first_step(y, end, K, trial, load, start, rtol, atol):
+    """Hairer's first step for order 8 (scipy's ``select_initial_step``); K[0] the derivative at y."""
+    d0, d1 = 0.0, 0.0
+    for c in range(SIZE):
+        scale = atol + abs(y[c]) * rtol
+        d0 += (y[c] / scale) * (y[c] / scale)
+        d1 += (K[c] / scale) * (K[c] / scale)
+    d0, d1 = math.sqrt(d0 / SIZE), math.sqrt(d1 / SIZE)
+    h0 = min(1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1, end)
+    for c in range(SIZE):
+        trial[c] = y[c] + h0 * K[c]
+    _rhs(h0, trial, STAGES, K, load, start)  # K[STAGES] is scratch here
+    d2 = 0.0
+    for c in range(SIZE):
+        g = (K[STAGES * SIZE + c] - K[c]) / (atol + abs(y[c]) * rtol)
+        d2 += g * g
+    d2 = math.sqrt(d2 / SIZE) / h0
+    h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** (1.0 / 9.0)
+    return min(100.0 * h0, h1, end)
+
+
+@scalar.jit
+def _g(event, t, y, load):
+    """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g (HELD)."""
+    if event == HELD:
+        f0, f1 = _force(t, y, load)
+        return math.sqrt(f0 * f0 + f1 * f1) - load[6]
+    speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
+    return speed - (REST_SPEED if event == STOP else START_SPEED)
+
+
+@scalar.jit
+def _beyond(event, g):
+    """Whether g is past the event: STOP and HELD fall through zero, MOVING rises through it."""
+    return g >= 0.0 if event == MOVING else g <= 0.0
+
+
+@scalar.jit
+def _crosses(event, g_old, g_new):
+    """Whether a step crosses the event (scipy's test: from the event's near side or zero to its far
+    side or zero)."""
+    return _beyond(event, g_new) and (g_old == 0.0 or not _beyond(event, g_old))
+
+
+@scalar.jit
+def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
+    """The length s in (0, h] of the step from (t, y) that reaches the event (bisection to BRACKET; out
+    is y there), the event being past at h and not at 0."""
+    lo, hi = 0.0, h
+    while hi - lo > BRACKET:
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        _step(t, y, mid, K, out, trial, load, start, A, B, C)
+        if _beyond(event, _g(event, t + mid, out, load)):
+            hi = mid
+        else:
+            lo = mid
+    _step(t, y, hi, K, out, trial, load, start, A, B, C)
+    return hi
+
+
+@scalar.jit
+def _integrate(y, end, h, load, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial):
+    """DOP853 over [0, end] from y (overwritten with the state reached): (what ended it, when, the next
+    step). Events: STOP if ``stop``; MOVING and HELD for a ``start``; the earliest ends the slide."""
+    t = 0.0
+    _rhs(t, y, 0, K, load, start)
+    if h <= 0.0:
+        h = _first_step(y, end, K, trial, load, start, rtol, atol)
+    carry = h
+    while t < end:
+        rejected = False
+        while True:
+            if h < MIN_STEP:
+                return TOO_SHORT, t, h
+            t_new = min(t + h, end)
+            taken = t_new - t
+            _step(t, y, taken, K, out, trial, load, start, A, B, C)
+            error = _error(y, out, taken, K, rtol, atol, E3, E5)
+            if error < 1.0:
+                factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                carry = max(taken * factor, h) if t_new == end and taken < h else taken * factor
+                h = taken * factor
+                break
+            h = taken * max(MIN_FACTOR, SAFETY * error ** EXPONENT)
+            rejected = True
+        crossed = (stop and _crosses(STOP, _g(STOP, t, y, load), _g(STOP, t_new, out, load)),
+                   start and _crosses(MOVING, _g(MOVING, t, y, load), _g(MOVING, t_new, out, load)),
+                   start and _crosses(HELD, _g(HELD, t, y, load), _g(HELD, t_new, out, load)))
+        first, length = NONE, taken
+        for event in (STOP, MOVING, HELD):
+            if crossed[event - 1]:
+                s = _locate(event, t, y, taken, K, out, trial, load, start, A, B, C)
+                if first == NONE or s < length:
+                    first, length = event, s
+        if first != NONE:
+            _step(t, y, length, K, out, trial, load, start, A, B, C)
+            for c in range(SIZE):
+                y[c] = out[c]
+            return first, t + length, carry
+        for c in range(SIZE):
+            y[c] = out[c]
+            K[c] = K[STAGES * SIZE + c]
+        t = t_new
+    return NONE, end, carry
+
+
+@scalar.jit
+def _breakaway(d0x, d0y, d1x, d1y, friction, end):
     """The first tau in (0, end) where |d0 + d1 tau| reaches ``friction`` (a quadratic), or -1."""
-    a = d1 @ d1
-    b = 2 * (d0 @ d1)
-    c = d0 @ d0 - friction**2
+    a = d1x * d1x + d1y * d1y
+    b = 2 * (d0x * d1x + d0y * d1y)
+    c = (d0x * d0x + d0y * d0y) - friction * friction
     if c > 0.0:
         return 0.0
     if a == 0.0:
@@ -451,3 +556,130 @@ def _breakaway(d0, d1, friction, end):
         return -1.0
     root = (-b + math.sqrt(disc)) / (2 * a)  # c <= 0: the larger root is the exit
     return root if 0.0 < root < end else -1.0
+
+
+@scalar.jit
+def _state(k, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick):
+    """Row k of the history: u, u̇, and z (f / μ g sticking; sliding, the direction of u̇, or at rest
+    that of the force)."""
+    u[k, 0], u[k, 1], v[k, 0], v[k, 1] = x0, x1, w0, w1
+    stick[k] = not sliding
+    if not sliding:
+        z[k, 0], z[k, 1] = f0 / friction, f1 / friction
+        return
+    z[k, 0], z[k, 1] = 0.0, 0.0
+    if friction == 0.0:
+        return
+    d0, d1 = (w0, w1) if w0 != 0.0 or w1 != 0.0 else (f0, f1)
+    size = math.sqrt(d0 * d0 + d1 * d1)
+    if size > 0.0:
+        z[k, 0], z[k, 1] = d0 / size, d1 / size
+
+
+def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z, stick):
+    """The two-component history at the interval ends (the module docstring) into u, u̇, z (n, 2) and
+    sticking (n,): (DONE, 0), or (CHATTER or FAILED, the interval where the run stopped)."""
+    n = time.size
+    w2, damp = omega * omega, 2 * zeta * omega
+    x0, x1, w0, w1 = 0.0, 0.0, 0.0, 0.0
+    # sticking holds while |f| <= μ g (1 + rtol): a stop where the force equals the friction to within
+    # the integration's own accuracy (as a Coulomb oscillator's last stop under a constant load) is
+    # not left to the rounding of the state there
+    hold = friction * (1.0 + rtol)
+    f0, f1 = -a0[0, 0], -a0[0, 1]
+    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold
+    starting = sliding and friction > 0.0  # a start from rest, until |u̇| reaches START_SPEED
+    _state(0, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick)
+    h_next = 0.0  # the integrator's step, carried while the structure slides on
+    for k in range(n - 1):
+        h = time[k + 1] - time[k]
+        tau, phases = 0.0, 0
+        while tau < h:
+            phases += 1
+            if phases > MAX_PHASES:
+                return CHATTER, k
+            b00, b01 = a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau
+            b10, b11 = a1[k, 0], a1[k, 1]
+            end = h - tau
+            if not sliding:
+                when = _breakaway(-b00 - w2 * x0, -b01 - w2 * x1, -b10, -b11, hold, end)
+                tau += when if when >= 0.0 else end
+                sliding = starting = when >= 0.0
+                h_next = 0.0
+                continue
+            y[0], y[1], y[2], y[3] = x0, x1, w0, w1
+            if starting:
+                # a start from rest: u̇ grows along the force, whose direction u̇ / |u̇| takes within a
+                # vanishing time; until |u̇| reaches START_SPEED (in this interval or a later one) the
+                # friction is taken along the force (exact along a line), which spares the integrator
+                # the direction of a velocity that is only rounding
+                load = (b00, b01, b10, b11, w2, damp, friction)
+                ended, when, h_next = _integrate(y, end, 0.0, load, True, False, rtol, atol, A, B, C, E3, E5, K,
+                                                 out, trial)
+                if ended == TOO_SHORT:
+                    return FAILED, k
+                if ended == HELD:  # the force fell back within the friction: at rest again
+                    x0, x1, w0, w1, tau, h_next = y[0], y[1], 0.0, 0.0, tau + when, 0.0
+                    sliding = starting = False
+                    continue
+                if ended == NONE:
+                    x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
+                    continue
+                tau, end, h_next, starting = tau + when, end - when, 0.0, False  # moving
+                b00, b01 = b00 + b10 * when, b01 + b11 * when
+            load = (b00, b01, b10, b11, w2, damp, friction)
+            ended, when, h_next = _integrate(y, end, h_next, load, False, friction > 0.0, rtol, atol, A, B, C, E3,
+                                             E5, K, out, trial)
+            if ended == TOO_SHORT:
+                return FAILED, k
+            if ended == STOP:  # at rest: the last REST_SPEED at the deceleration there, to first order
+                speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
+                g0, g1 = _force(when, y, load)
+                slowing = friction + damp * speed - (g0 * y[2] + g1 * y[3]) / speed
+                last = min(speed / slowing, end - when) if slowing > 0.0 else 0.0
+                x0, x1, w0, w1 = y[0] + 0.5 * last * y[2], y[1] + 0.5 * last * y[3], 0.0, 0.0
+                when += last
+                tau += when
+                g0 = -(b00 + b10 * when) - w2 * x0
+                g1 = -(b01 + b11 * when) - w2 * x1
+                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold
+                h_next = 0.0
+                continue
+            x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
+        f0 = -(a0[k, 0] + a1[k, 0] * h) - w2 * x0
+        f1 = -(a0[k, 1] + a1[k, 1] * h) - w2 * x1
+        _state(k + 1, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick)
+    return DONE, 0
+
+
+def _plane(ground: Ground, omega, zeta, friction, compiled=None):
+    """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2) and
+    sticking; ``compiled`` None: compiled for a long record (``backend``), interpreted for a short one."""
+    from . import backend
+
+    time, a0, a1 = ground
+    n = time.size
+    if compiled is None:
+        compiled = backend.choose(n - 1, INTERVAL_WORK) == "numba"
+    run = scalar.kernel(plane) if compiled else plane
+    work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
+    if not compiled:
+        work = tuple(w.tolist() for w in work)
+    u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
+    stick = np.zeros(n, dtype=bool)
+    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
+                    np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), float(RTOL),
+                    float(ATOL), *_tableau(compiled), *work, u, v, z, stick)
+    if status == CHATTER:
+        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
+                           f"t = {time[k]:g} s: the friction chatters; report the record and the structure")
+    if status == FAILED:
+        raise RuntimeError(f"structure: the two-component integration's step fell below {MIN_STEP:g} s in the "
+                           f"sample interval at t = {time[k]:g} s; report the record and the structure")
+    return u, v, z, stick
+
+
+def warm():
+    """Compile (or load) the two-component kernel into the on-disk cache."""
+    ground = Ground.from_samples([0.0, 0.01, 0.02], [[0.0, 0.0], [1.0, 0.5], [0.0, 0.0]])
+    _plane(ground, 2.0, 0.0, 0.05 * G, compiled=True)
