@@ -34,8 +34,8 @@ displacement table's piecewise-constant acceleration).
   interval, reaches μ g (exact; in two components sticking holds while |f| <= μ g (1 + ``RTOL``),
   so that a stop where the force equals the friction to within the integration's accuracy is
   not decided by rounding). The integrator (``plane``) is written for Numba like the device's
-  kernels: compiled for a long record, interpreted for a short one, with the same bits, on any
-  processor (no BLAS).
+  kernels: compiled for a long record, interpreted for a short one, with the same bits, and no
+  BLAS (whose kernels OpenBLAS chooses by processor).
 """
 
 from __future__ import annotations
