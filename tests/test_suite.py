@@ -110,6 +110,32 @@ def test_a_pair_is_named_by_its_station(suite):
     assert list(pairs) == ["RSN6_IMPVALL.I_I-ELC", "a_x+b_y"]
 
 
+def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):
+    """Pairs [x, y] on the record axis (the study file's schema took single files only): each pair is
+    one record, named by its station, and runs in two components."""
+    for name in NAMES[:2]:
+        dt, a = read_at2(suite / "records" / f"{name}.AT2")
+        write_at2(suite / "records" / f"{name}_X.AT2", dt, a)
+        write_at2(suite / "records" / f"{name}_Y.AT2", dt, 0.5 * a)
+    config = {**CONFIG, "structure": {"friction": 0.04},
+              "sweep": {"record": [[f"records/{n}_X.AT2", f"records/{n}_Y.AT2"] for n in NAMES[:2]], "scale": [1.0]},
+              "histories": [{"record": "RSN12", "scale": 1.0}]}
+    with pytest.raises(StudyError, match=r"histories\[0\]\.record: 'RSN12' is not on the sweep axis "
+                                         r"\['RSN11_NORTH', 'RSN12_SOUTH'\]"):
+        Study.from_config(config, suite)
+    study = Study.from_config({**config, "histories": [{"record": "RSN12_SOUTH", "scale": 1.0}]}, suite)
+    assert list(study.axes["record"]) == ["RSN11_NORTH", "RSN12_SOUTH"]
+    ds = _combined(study)
+    # (a, a / 2) moves along one line with c = √1.25 times a's acceleration: the stroke of a alone
+    # under the friction μ / c, times c
+    c = np.sqrt(1.25)
+    alone = _combined(Study.from_config({**CONFIG, "structure": {"friction": 0.04 / c},
+                                         "sweep": {"record": [f"records/{n}.AT2" for n in NAMES[:2]], "scale": [1.0]},
+                                         "histories": []}, suite))
+    assert np.all(ds["stroke_max_abs"].values > 0.01)
+    assert np.allclose(ds["stroke_max_abs"].values, c * alone["stroke_max_abs"].values, rtol=1e-9)
+
+
 @pytest.mark.slow
 def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
     (suite / "work").mkdir()

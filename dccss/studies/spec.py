@@ -412,7 +412,8 @@ def _point(point, key, axes) -> dict:
     for name, v in point.items():
         if name in CATEGORICAL:
             if v not in axes[name]:
-                raise StudyError(f"{key}.{name}: {v!r} is not on the sweep axis {list(axes[name])}")
+                allowed = np.asarray(axes[name]).tolist()
+                raise StudyError(f"{key}.{name}: {v!r} is not on the sweep axis {allowed}")
             out[name] = v
         else:
             out[name] = number(v, f"{key}.{name}")
