@@ -123,7 +123,7 @@ def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):
     with pytest.raises(StudyError, match=r"histories\[0\]\.record: 'RSN12' is not on the sweep axis "
                                          r"\['RSN11_NORTH', 'RSN12_SOUTH'\]"):
         Study.from_config(config, suite)
-    study = Study.from_config({**config, "histories": [{"record": "RSN12_SOUTH", "scale": 1.0}]}, suite)
+    study = Study.from_config({**config, "histories": [{"record": "RSN12_SOUTH", "scale": 1.0}]}, str(suite))  # a str
     assert list(study.axes["record"]) == ["RSN11_NORTH", "RSN12_SOUTH"]
     ds = _combined(study)
     # (a, a / 2) moves along one line with c = √1.25 times a's acceleration: the stroke of a alone

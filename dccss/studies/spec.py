@@ -159,6 +159,7 @@ class Study:
         each key is checked on its own, a key that depends on others (the excitation on the device and
         the sweep, dt on the excitation) once they have passed, the sweep points' devices once all
         keys have, and the schema adds its errors about the keys whose checks passed."""
+        base = Path(base)  # the folder file names are relative to (a str is taken too)
         if not isinstance(config, dict):
             check_keys(config, "study file", REQUIRED, KEYS - set(REQUIRED))  # raises: not a mapping
         problems = Problems(config, StudyError)
