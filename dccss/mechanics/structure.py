@@ -367,7 +367,8 @@ def _tableau(compiled):
 
     arrays = [np.ascontiguousarray(c, dtype=float).ravel() for c in (DOP853.A, DOP853.B, DOP853.C, DOP853.E3,
                                                                       DOP853.E5)]
-    assert [a.size for a in arrays] == [STAGES * STAGES, STAGES, STAGES, STAGES + 1, STAGES + 1]
+    if [a.size for a in arrays] != [STAGES * STAGES, STAGES, STAGES, STAGES + 1, STAGES + 1]:
+        raise RuntimeError(f"scipy.integrate.DOP853's tableau is not of {STAGES} stages: scipy changed it")
     return tuple(arrays) if compiled else tuple(a.tolist() for a in arrays)
 
 
