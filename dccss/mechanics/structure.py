@@ -40,6 +40,7 @@ displacement table's piecewise-constant acceleration).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -360,6 +361,7 @@ INTERVAL_WORK = 25
 DONE, CHATTER, FAILED = 0, 1, 2
 
 
+@functools.cache
 def _tableau(compiled):
     """DOP853's A (row-major), B, C, E3 and E5 (scipy.integrate.DOP853's): numpy arrays for the compiled
     kernel, lists (faster to index) interpreted."""
@@ -478,8 +480,8 @@ def _crosses(event, g_old, g_new):
 
 @scalar.jit
 def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
-    """The length s in (0, h] of the step from (t, y) that reaches the event (bisection to BRACKET; out
-    is y there), the event being past at h and not at 0."""
+    """The length s in (0, h] of the step from (t, y) that reaches the event (bisection to BRACKET), the
+    event being past at h and not at 0; ``out`` is scratch."""
     lo, hi = 0.0, h
     while hi - lo > BRACKET:
         mid = 0.5 * (lo + hi)
@@ -490,7 +492,6 @@ def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
             hi = mid
         else:
             lo = mid
-    _step(t, y, hi, K, out, trial, load, start, A, B, C)
     return hi
 
 
