@@ -19,7 +19,7 @@ Typical use::
 Layout (imports flow downwards only):
 
 * ``mechanics/`` - the model (nothing above it is imported): ``geometry``, ``kinematics``,
-  ``constraints``, ``newton``, ``models`` (the steppers and the registry of models), ``capacity``
+  ``newton``, ``models`` (the steppers and the registry of models), ``capacity``
   (the retaining rings and their errors), ``summaries`` (the per-case reductions of a sweep),
   ``compiled`` (the planar steppers compiled with Numba), ``backend`` (which of the two runs),
   ``spatial`` (both models in space, for bidirectional ground motion, compiled) and ``runs`` (the

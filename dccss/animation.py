@@ -37,8 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import write_atomic
-from .mechanics.constraints import Q_NAMES
-from .mechanics.kinematics import CORNERS, interpenetration
+from .mechanics.kinematics import CORNERS, Q_NAMES, interpenetration
 from .mechanics.models import REGISTRY
 from .mechanics.newton import NewtonOptions
 from .results import MODEL_TITLES, geometry_from_attrs, has_structure

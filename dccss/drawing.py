@@ -16,8 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 from .files import write_atomic
-from .mechanics.constraints import Q_NAMES
-from .mechanics.kinematics import CORNERS
+from .mechanics.kinematics import CORNERS, Q_NAMES
 
 CORNER_STYLE = {  # A/D and B/C superimpose: solid wide under dashed narrow
     "A": dict(color="tab:blue", ls="-", lw=2.6, zorder=2),

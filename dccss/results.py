@@ -12,9 +12,8 @@ import xarray as xr
 
 from ._version import __version__
 from .mechanics import models
-from .mechanics.constraints import Q_NAMES
 from .mechanics.geometry import PARAMETERS, Geometry
-from .mechanics.kinematics import CORNERS, corner_diagnostics, interpenetration
+from .mechanics.kinematics import CORNERS, Q_NAMES, corner_diagnostics, interpenetration
 
 DOI = "10.3390/buildings11020050"
 #: The time coordinate is ``t``: seconds elapsed since the start of the imposed ground motion.

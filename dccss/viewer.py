@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .mechanics.constraints import Q_NAMES
+from .mechanics.kinematics import Q_NAMES
 from .results import MODEL_TITLES, geometry_from_attrs
 
 #: the size of an animation's frames (inches, dots per inch)

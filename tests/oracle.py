@@ -3,7 +3,7 @@ arrays, for one case or a batch, that the tests check the kernels against (``dcc
 kernels, interpreted and compiled).
 
 It steps all the cases of a batch together with numpy: the constraint sets of
-``dccss.mechanics.constraints`` (their rows as dicts of partial derivatives), Newton-Raphson on the
+``constraint_sets`` (their rows as dicts of partial derivatives), Newton-Raphson on the
 contact rows with the elimination of ``linear.solve4`` (one case) or its elementwise repetition
 (``solve4_batch``), the same predictors, wrapping and slip set as the kernels, and sweep summaries
 reduced with numpy. ``run``, ``steps`` and ``summarize`` take a model's name, as the package's.
@@ -14,10 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 import numpy as np
+from constraint_sets import Compliant, Slipping, Sticking, diagonal, stack_jacobian, stack_residual
 
 from dccss.mechanics import newton
 from dccss.mechanics.capacity import CAPACITY_POLICIES, case_error, mark_failures
-from dccss.mechanics.constraints import Compliant, Slipping, Sticking, diagonal, stack_jacobian, stack_residual
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.kinematics import (
     CORNERS,

@@ -3,10 +3,10 @@
 import numpy as np
 import oracle
 import pytest
+from constraint_sets import Sticking, diagonal
 
 from dccss.excitation import Sine, step_times
 from dccss.mechanics import models, newton
-from dccss.mechanics.constraints import Sticking, diagonal
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.kinematics import CORNERS, all_corners, circle_centre, frames, interpenetration, local
 from dccss.paper.prototypes import DFP1, DFP2, TABLE1

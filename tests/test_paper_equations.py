@@ -17,9 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from constraint_sets import Compliant, Slipping, Sticking, diagonal
 from numpy import cos, sin
 
-from dccss.mechanics.constraints import Compliant, Slipping, Sticking, diagonal
+from dccss.mechanics import compiled, models
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.kinematics import all_corners, contact_angle, contact_point, frames
 from dccss.paper.prototypes import DFP1, DFP2
@@ -543,6 +544,60 @@ def test_slipping_jacobian_fd(diag, name, case):
     cset, *_ = make_slipping(ALL_GEOMETRIES[name], rng, diag == "BC", q)
     # RB1 is frozen in the slipping phase: C_q (6 x 6) is over (R_x^2 ... theta^3)
     assert_fd(cset.jacobian(q), central_differences(cset.residual, q, range(3, 9)))
+
+
+KINDS = {"compliant": compiled.COMPLIANT, "sticking": compiled.STICKING, "slipping": compiled.SLIPPING}
+
+
+def kernel_rows(kind, g, rng, bc, q):
+    """The library kernels' contact rows (``compiled._rows``, interpreted) as a function of the free
+    coordinates, and the tests' constraint set of the same data."""
+    if kind == "compliant":
+        cset = make_compliant(g, rng)[0]
+    elif kind == "sticking":
+        cset = make_sticking(g, rng, bc)[0]
+    else:
+        cset = make_slipping(g, rng, bc, q)[0]
+    pad = tuple(c.u2 for c in cset.corners)
+    normals = getattr(cset, "normals", [0j] * len(pad))
+    n12, k1, k3 = (cset.n12, cset.k1, cset.k3) if kind == "slipping" else (1j, 0.0, 0.0)
+    data = (pad, tuple(cset.points), tuple(normals), n12, k1, k3)
+    q = cset.prescribe(q)
+
+    def rows(x):
+        qx = q.copy()
+        qx[list(cset.free)] = x
+        g, J = compiled._rows(KINDS[kind], compiled.frames(tuple(qx.tolist())), data)
+        return np.array(g), np.array(J)
+    return rows, cset, q
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("diag", ["AD", "BC"])
+@pytest.mark.parametrize("name", ALL_GEOMETRIES)
+@pytest.mark.parametrize("case", range(5))
+def test_kernel_rows_are_the_constraint_sets_and_their_jacobian_fd(kind, diag, name, case):
+    """The kernels' rows (the library's only statement of them) equal this module's constraint sets on
+    the free coordinates, and their Jacobian central differences of their residual."""
+    rng = np.random.default_rng([11, case])
+    rows, cset, q = kernel_rows(kind, ALL_GEOMETRIES[name], rng, diag == "BC", random_q(rng))
+    x = q[list(cset.free)]
+    g, J = rows(x)
+    g_ref, J_ref = cset.contact(q, cset.free)
+    np.testing.assert_allclose(g, g_ref, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(J, J_ref, rtol=0, atol=1e-15)
+    assert_fd(J, central_differences(lambda x: rows(x)[0], x, range(len(x))))
+
+
+def test_determinant_diagnostic_is_the_compliant_sets():
+    """det_Cq of a history (``models.determinant``) is |C_q| of the tests' compliant set at each step."""
+    g = ALL_GEOMETRIES["R1>R3"]
+    h = models.run("compliant", g, 0.2 * np.sin(np.linspace(0.0, 6.0, 200)), theta2_0=0.02)
+    corners = all_corners(g)
+    cset = Compliant(corners, h["q"][..., 0], h["Rx3"], [h["point"][..., i] for i in range(4)],
+                     [h["normal"][..., i] for i in range(4)])
+    assert np.abs(cset.determinant(h["q"])).min() > 1e-3
+    np.testing.assert_array_equal(models.determinant(h, g), cset.determinant(h["q"]))
 
 
 @pytest.mark.parametrize("name", PRINTED)

@@ -1,9 +1,9 @@
 """The mechanics of the three-body model (nothing here reads files or draws, or imports what does).
 
 ``geometry`` (the Table 1 parameters and what follows from them), ``kinematics`` (bodies, corners
-and contact points), ``constraints`` (the constraint sets with their analytic Jacobians), ``newton``
-(Newton-Raphson's options and errors), ``linear`` (the 4 x 4 solve, written out), ``registry`` (a
-model is an entry), ``models`` (the paper's two models: their kernels and registry entries),
+and contact points), ``newton`` (Newton-Raphson's options and errors), ``linear`` (the 4 x 4
+solve, written out), ``registry`` (a model is an entry), ``models`` (the paper's two models: their
+kernels, written once on scalars, and registry entries),
 ``capacity`` (the retaining rings and their errors), ``summaries`` (the per-case reductions of a
 sweep), ``scalar`` (how the kernels compile), ``compiled`` (the planar kernels' helpers and
 driver, compiled with Numba or interpreted), ``backend`` (which runs: DCCSS_BACKEND and the run's

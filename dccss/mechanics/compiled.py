@@ -13,7 +13,7 @@ The entry points take a model's name and return what the numpy reference of the 
   O(cases), no (T, N, 9) arrays.
 
 The algorithm (the helpers here, the steps in ``models``) is the reference's, row for row: the
-same constraint rows (``constraints``: the tangency rows of Eqs. 6-11, the pin rows of Eq. 32,
+same constraint rows (the tests' ``constraint_sets``: the tangency rows of Eqs. 6-11, the pin rows of Eq. 32,
 the slip rows of Eq. 37), the prescribed rows set first and Newton on the contact rows over the
 free coordinates (``newton``) with the same written-out 4 x 4 solve (``linear.solve4``), the same
 test max|g| <= tol and iteration cap, the same predictors (the reference's ``_extrapolate`` cubic
@@ -232,7 +232,7 @@ def contacts(u, centre, radius, signed):
     return (pA, pB, pC, pD), (nA, nB, nC, nD), (aA, aB, aC, aD)
 
 
-# --- constraint rows (constraints.py) ------------------------------------------------------
+# --- constraint rows (the tests' constraint_sets.py) -----------------------------------------
 @jit
 def _tangent(R2, e2, Rj, ej, u2, point, normal):
     """Tangency row (r_P^2 - r_P^j) . n_P^j (Eqs. 6-11): g, the global normal n and
@@ -583,8 +583,8 @@ class _Batch:
         if self.one_case:  # the one-case path names the step's diagonal, the batch path both
             down = bool(self.Xg[n, 0] < self.Xg[n - 1, 0])
         else:
-            down = np.zeros(self.shape, dtype=bool)
-        cset = kernels.constraint_set(geometry, phase, down)
+            down = None
+        cset = kernels.rows(phase, down)
         context = newton.context(n, times, cset.phase)
         index = () if self.one_case else tuple(int(i) for i in np.unravel_index(k, self.shape))
         try:

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+#: the coordinates q of Eq. 4, in order
+Q_NAMES = ("Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3", "theta3")
 CORNERS = ("A", "B", "C", "D")
 RB1, RB2, RB3 = 0, 3, 6  # index of each body's R_x in q
 NORMALS = ("signed", "unsigned")

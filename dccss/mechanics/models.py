@@ -30,13 +30,9 @@ import numpy as np
 
 from . import backend, compiled, scalar, spatial
 from .compiled import RISE_STICK_MAX, STICK_TURN_MAX
-from .constraints import Compliant, Slipping, Sticking, diagonal
-from .kinematics import (
-    CORNERS,
-    all_corners,
-    contact_angle,
-    interpenetration,
-)
+from .kinematics import CORNERS, all_corners, contact_angle, dot, frames, interpenetration, turn
+from .linear import det
+from .newton import Rows
 from .registry import REGISTRY, Model, PlanarKernels, model, register
 from .scalar import jit
 
@@ -56,11 +52,22 @@ def _compliant_diagnostics(history, geometry) -> dict:
 
 
 def determinant(history, geometry):
-    """|C_q| (Eq. 29) of the compliant steps of ``history`` at their solutions (m)."""
-    corners = all_corners(geometry)
-    cset = Compliant(corners, history["q"][..., 0], history["Rx3"],
-                     [history["point"][..., i] for i in range(4)], [history["normal"][..., i] for i in range(4)])
-    return cset.determinant(history["q"])
+    """|C_q| (Eq. 29) of the compliant steps of ``history`` at their solutions (m): the 9 x 9 Jacobian
+    of Eq. 5 in the paper's row and column order, the unit rows of R_x^1, R_y^1, theta^1, then the
+    tangency rows of A, B, C, D at the previous contact points (Eqs. 16-28), then the unit rows of
+    R_x^3 and theta^3."""
+    q = history["q"]
+    (_, _), (R2, e2), _ = F = frames(q)
+    J = np.zeros(q.shape[:-1] + (9, 9))
+    for k, row in ((0, 0), (1, 1), (2, 2), (6, 7), (8, 8)):
+        J[..., row, k] = 1.0
+    for i, c in enumerate(all_corners(geometry)):
+        Rj, ej = F[c.body // 3]
+        arm, n = e2 * c.u2, turn(ej, history["normal"][..., i])
+        b, row = c.body, J[..., 3 + i, :]
+        row[..., 3], row[..., 4], row[..., 5] = n.real, n.imag, dot(1j * arm, n)
+        row[..., b], row[..., b + 1], row[..., b + 2] = -n.real, -n.imag, dot(R2 + arm - Rj, 1j * n)
+    return det(J)
 
 
 def _stick_slip_diagnostics(history, geometry) -> dict:
@@ -228,18 +235,28 @@ STICK_SLIP_HISTORY = {"q": ((9,), float), "newton_iterations": ((), np.int64), "
                       "residual_stick": ((), float)}
 
 
-def compliant_set(geometry, phase, down):
-    """A compliant constraint set of ``geometry``, for an error's name and row labels."""
-    return Compliant(all_corners(geometry), 0.0, 0.0, [0j] * 4, [0j] * 4)
+#: the free coordinates of a phase (Eq. 4 indices): R_x^2, R_y^2, theta^2 and R_y^3, or R_x^3 when slipping
+FREE, FREE_SLIPPING = (3, 4, 5, 7), (3, 4, 5, 6)
 
 
-def stick_slip_set(geometry, phase, down):
-    """The sticking (phase 0) or slipping (1) set of the jammed diagonal (``down``: B-C), for an error's
-    name and row labels."""
-    corners = diagonal(geometry, down)
+def compliant_rows(phase, down):
+    """The compliant set (Eq. 5), for an error's name and row labels."""
+    return Rows("compliant sliding", FREE, tuple(
+        f"row {4 + i} (Eq. {8 + i}: {c}^2 sliding on the tangent to C_nf^{1 if i < 2 else 3})"
+        for i, c in enumerate(CORNERS)))
+
+
+def stick_slip_rows(phase, down):
+    """The sticking (phase 0, Eq. 31) or slipping (1, Eq. 37) set of the jammed diagonal, B-C if ``down``
+    (None: a batch, which names both), for an error's name and row labels."""
+    p1, p3 = {False: ("A", "D"), True: ("B", "C"), None: ("A/B", "D/C")}[down]
     if phase == 0:
-        return Sticking(corners, 0.0, 0.0, [0j, 0j])
-    return Slipping(corners, np.zeros(9), [0j, 0j], [0j, 0j], 1j, 0.0, 0.0, 0.0)
+        return Rows("sticking", FREE, tuple(f"row {r} (Eq. 32: {x} of {p}^2 pinned to RB{j})" for r, (x, p, j) in
+                                            enumerate((("x", p1, 1), ("y", p1, 1), ("x", p3, 3), ("y", p3, 3)), 4)))
+    return Rows("slipping", FREE_SLIPPING, (f"row 1 (Eq. 37: {p1}^2 sliding on the tangent to C_nf^1)",
+                                            f"row 2 (Eq. 37: {p3}^2 sliding on the tangent to C_nf^3)",
+                                            "row 3 (Eq. 38: G^2 on the line C^1C^3)",
+                                            "row 4 (Eq. 39: RB3 translating along C^1C^3)"))
 
 
 @jit
@@ -287,13 +304,13 @@ def stick_slip_spatial_history(dev, Xg, theta2_0, azimuth, R3z, in_plane, tol, m
 # compliant sliding drawn wide and solid underneath, stick-slip narrow and dashed on top
 register(Model(
     "compliant", "Compliant Sliding",
-    PlanarKernels(compliant_case, compliant_batch, COMPLIANT_HISTORY, {}, compliant_set), _compliant_diagnostics,
+    PlanarKernels(compliant_case, compliant_batch, COMPLIANT_HISTORY, {}, compliant_rows), _compliant_diagnostics,
     line=dict(color="tab:blue", ls="-", lw=2.6, zorder=2), marker=dict(marker="o", ms=8, mfc="none", mew=1.8),
     spatial=compliant_spatial_history))
 register(Model(
     "stick_slip", "Stick-Slip",
     PlanarKernels(stick_slip_case, stick_slip_batch, STICK_SLIP_HISTORY,
-                  {"sticking_rotation_max": STICK_TURN_MAX, "rise_stick_max": RISE_STICK_MAX}, stick_slip_set),
+                  {"sticking_rotation_max": STICK_TURN_MAX, "rise_stick_max": RISE_STICK_MAX}, stick_slip_rows),
     _stick_slip_diagnostics, stages={"_stick": " at the end of the sticking phase"},
     summaries={"sticking_rotation_max": ("degree", "largest pad rotation within a sticking phase, "
                                                    "|theta2_stick - theta2(t_n-1)|"),

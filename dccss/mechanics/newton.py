@@ -3,17 +3,18 @@
 The prescribed unit rows of a constraint set are linear, so one Newton step solves them exactly;
 the kernels (``compiled.newton``) apply it first and then iterate C_q[contact, free] dq = -g on the
 contact rows. This is block elimination of Eq. 13, not a different method: the iterates are
-Newton's. A failure is raised here, named by its constraint set (``constraints``: the phase, the
-free coordinates and the row labels).
+Newton's. A failure is raised here, named by its constraint set (``Rows``: the phase, the free
+coordinates and the row labels).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from .constraints import Q_NAMES
+from .kinematics import Q_NAMES
 from .linear import det
 
 
@@ -64,6 +65,15 @@ class NewtonOptions:
             raise ValueError(f"Newton 'on_failure' must be one of {FAILURE_POLICIES}, got {self.on_failure!r}")
 
 
+class Rows(NamedTuple):
+    """What a failure says of its constraint set: the phase, the free coordinates (indices of q,
+    Eq. 4) and the labels of the contact rows, in the paper's terms."""
+
+    phase: str
+    free: tuple[int, ...]
+    labels: tuple[str, ...]
+
+
 def context(n, times, phase):
     """The context of an error at step n (its time, if ``times`` is given) in ``phase``."""
     ctx = {"step": n, "phase": phase}
@@ -81,7 +91,7 @@ def _where(context, index) -> str:
     return ", ".join(parts)
 
 
-def raise_singular(cset, J, context, index):
+def raise_singular(cset: Rows, J, context, index):
     raise SingularJacobianError(
         f"singular constraint Jacobian in {cset.phase} ({_where(context, index)}): "
         f"|C_q| = {float(det(J[index])):.3e}. The constraints do not fix the free "
@@ -93,7 +103,7 @@ def raise_singular(cset, J, context, index):
 STALLED = 100.0
 
 
-def raise_not_converged(cset, g, options, context, index):
+def raise_not_converged(cset: Rows, g, options, context, index):
     a = np.where(np.isnan(g), np.inf, np.abs(g))
     row = int(np.argmax(a))
     residual = float(a[row])
@@ -106,4 +116,4 @@ def raise_not_converged(cset, g, options, context, index):
     raise ConvergenceError(
         f"Newton-Raphson did not converge in {cset.phase} ({_where(context, index)}): after "
         f"{options.max_iter} iterations the residual is {residual:.3e} m > tol "
-        f"{options.tol:.1e} m; largest: {cset.row_labels()[row]} = {float(g[row]):.3e}.", hint, index)
+        f"{options.tol:.1e} m; largest: {cset.labels[row]} = {float(g[row]):.3e}.", hint, index)

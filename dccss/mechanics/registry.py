@@ -30,16 +30,16 @@ class PlanarKernels(NamedTuple):
         ``history_out`` and of the histories it returns.
     summary_columns : dict
         {summary name: column of the accumulators} of the model's own summaries.
-    constraint_set : callable
-        ``constraint_set(geometry, phase, down)``: a constraint set of the failing phase (0 or 1)
-        of a step, for an error's message (``down``: the jammed diagonal is B-C).
+    rows : callable
+        ``rows(phase, down)``: the ``newton.Rows`` of the failing phase (0 or 1) of a step, for an
+        error's message (``down``: the jammed diagonal is B-C; None: a batch, both).
     """
 
     case: Callable
     batch: Callable
     history: dict
     summary_columns: dict
-    constraint_set: Callable
+    rows: Callable
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,6 @@
-"""The constraint sets of the two models, each with its analytic Jacobian.
+"""The constraint sets of the two models, each with its analytic Jacobian, in numpy over a batch: the
+tests' independent statement of the paper's equations (the library's kernels write the same rows on
+scalars, ``dccss.mechanics.compiled``; ``oracle`` runs these).
 
 A constraint set C(q) = 0 splits into
 
@@ -25,11 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .kinematics import Corner, dot, frames, turn
-from .linear import det
-
-Q_NAMES = ("Rx1", "Ry1", "theta1", "Rx2", "Ry2", "theta2", "Rx3", "Ry3", "theta3")
-DIAGONALS = ("AD", "BC")
+from dccss.mechanics.kinematics import Corner, dot, frames, turn
+from dccss.mechanics.linear import det
 
 
 def tangent_row(F, corner: Corner, point, normal, rotations=True):
@@ -108,6 +107,11 @@ class ConstraintSet:
 
     def row_labels(self) -> list[str]:
         raise NotImplementedError
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        """The contact rows' labels (as ``dccss.mechanics.newton.Rows``, which names a failure)."""
+        return tuple(self.row_labels())
 
     def contact(self, q, columns=tuple(range(9))):
         """Contact rows g (..., m) and their Jacobian dg/dq (..., m, len(columns)), by default
