@@ -27,8 +27,33 @@ from __future__ import annotations
 
 import numpy as np
 
-from dccss.mechanics.kinematics import Corner, dot, frames, turn
+from dccss.mechanics.kinematics import NORMALS, Corner, dot, frames, local, turn
 from dccss.mechanics.linear import det
+
+
+def circle_centre(F, corner: Corner):
+    """Global position of the concave circle centre of the corner's plate (complex)."""
+    R, e = F[corner.body // 3]
+    return R + turn(e, corner.centre)
+
+
+def contact_point(F, corner: Corner, normals="signed", u=None):
+    """Previous contact point: radial projection of the corner onto its concave circle.
+
+    Returns the plate-frame point and unit normal (complex), the normal pointing from the point
+    to the circle centre (Eq. 7). With ``normals="unsigned"`` the normal is built from |alpha|
+    instead of the signed contact angle alpha (the authors' evident computation): it is
+    mirrored when the point lies across the plate axis from its corner. ``u``: the corner's
+    plate-frame position, if already known.
+    """
+    d = (local(F, corner) if u is None else u) - corner.centre
+    n = -d / abs(d)
+    point = corner.centre - corner.radius * n
+    if normals == "unsigned":
+        n = -corner.side * abs(n.real) + 1j * n.imag
+    elif normals != "signed":
+        raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
+    return point, n
 
 
 def tangent_row(F, corner: Corner, point, normal, rotations=True):

@@ -14,7 +14,16 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 import numpy as np
-from constraint_sets import Compliant, Slipping, Sticking, diagonal, stack_jacobian, stack_residual
+from constraint_sets import (
+    Compliant,
+    Slipping,
+    Sticking,
+    circle_centre,
+    contact_point,
+    diagonal,
+    stack_jacobian,
+    stack_residual,
+)
 
 from dccss.mechanics import newton
 from dccss.mechanics.capacity import CAPACITY_POLICIES, case_error, mark_failures
@@ -23,8 +32,6 @@ from dccss.mechanics.kinematics import (
     CORNERS,
     RB3,
     all_corners,
-    circle_centre,
-    contact_point,
     corner_diagnostics,
     dot,
     frames,

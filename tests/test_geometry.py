@@ -2,9 +2,10 @@
 
 import numpy as np
 import pytest
+from constraint_sets import circle_centre
 
 from dccss.mechanics.geometry import Geometry, _section_centroid
-from dccss.mechanics.kinematics import all_corners, circle_centre, frames, interpenetration, position
+from dccss.mechanics.kinematics import all_corners, frames, interpenetration, position
 from dccss.paper.prototypes import DFP1, DFP2, TABLE1
 
 

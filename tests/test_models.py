@@ -3,12 +3,12 @@
 import numpy as np
 import oracle
 import pytest
-from constraint_sets import Sticking, diagonal
+from constraint_sets import Sticking, circle_centre, diagonal
 
 from dccss.excitation import Sine, step_times
 from dccss.mechanics import models, newton
 from dccss.mechanics.geometry import Geometry
-from dccss.mechanics.kinematics import CORNERS, all_corners, circle_centre, frames, interpenetration, local
+from dccss.mechanics.kinematics import CORNERS, all_corners, frames, interpenetration, local
 from dccss.paper.prototypes import DFP1, DFP2, TABLE1
 
 UNEQUAL = Geometry.from_degrees(**{**TABLE1["DFP1"], "R3": 1.3, "alpha23": 8.0})

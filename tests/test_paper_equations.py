@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from constraint_sets import Compliant, Slipping, Sticking, diagonal
+from constraint_sets import Compliant, Slipping, Sticking, contact_point, diagonal
 from numpy import cos, sin
 
 from dccss.mechanics import compiled, models
 from dccss.mechanics.geometry import Geometry
-from dccss.mechanics.kinematics import all_corners, contact_angle, contact_point, frames
+from dccss.mechanics.kinematics import all_corners, contact_angle, frames
 from dccss.paper.prototypes import DFP1, DFP2
 
 N_CASES = 20

@@ -210,8 +210,8 @@ def plate_positions(F, pad):
 
 @jit
 def _contact(u, centre, radius, side, signed):
-    """Radial projection of a corner (plate frame ``u``) onto its concave circle
-    (``kinematics.contact_point``): the contact point, the unit normal towards the centre (from
+    """Radial projection of a corner (plate frame ``u``) onto its concave circle (the tests'
+    ``constraint_sets.contact_point``): the contact point, the unit normal towards the centre (from
     |alpha| if not ``signed``) and the corner's distance to the centre."""
     d = u - centre
     a = abs(d)

@@ -104,12 +104,6 @@ def position(F, corner: Corner):
     return R2 + e2 * corner.u2
 
 
-def circle_centre(F, corner: Corner):
-    """Global position of the concave circle centre of the corner's plate (complex)."""
-    R, e = F[corner.body // 3]
-    return R + turn(e, corner.centre)
-
-
 def local(F, corner: Corner):
     """The corner's position in its plate's frame (complex)."""
     R, e = F[corner.body // 3]
@@ -136,36 +130,10 @@ def corner_diagnostics(q, geometry, locals_=None):
     return np.stack(interp, axis=-1), gap
 
 
-def contact_point(F, corner: Corner, normals="signed", u=None):
-    """Previous contact point: radial projection of the corner onto its concave circle.
-
-    Returns the plate-frame point and unit normal (complex), the normal pointing from the point
-    to the circle centre (Eq. 7). With ``normals="unsigned"`` the normal is built from |alpha|
-    instead of the signed contact angle alpha (the authors' evident computation): it is
-    mirrored when the point lies across the plate axis from its corner. ``u``: the corner's
-    plate-frame position, if already known.
-    """
-    d = (local(F, corner) if u is None else u) - corner.centre
-    n = -d / abs(d)
-    point = corner.centre - corner.radius * n
-    if normals == "unsigned":
-        n = -corner.side * abs(n.real) + 1j * n.imag
-    elif normals != "signed":
-        raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
-    return point, n
-
-
 def contact_angle(normal, corner: Corner):
     """Contact angle alpha (rad) of Eqs. 8-11 from the plate-frame normal
     n = (-s sin alpha, v cos alpha), v = +1 on RB1, -1 on RB3: positive towards the corner's side."""
     return np.arctan2(-corner.side * np.real(normal), corner.sign * np.imag(normal))
-
-
-def clearance(q, geometry):
-    """Horizontal clearance (..., 2) between the pad and the retaining rings of RB1 and RB3 (m):
-    R^j sin(alpha^j) - max |x| of the plate's two corners in the plate frame. Negative when the
-    pad has passed the ring: the device capacity is exceeded."""
-    return corner_diagnostics(q, geometry)[1]
 
 
 def start(geometry, Xg, theta2_0):
