@@ -126,12 +126,12 @@ def _check_samples(source, time, **columns):
         if bad.any():
             i = int(np.argmax(bad))
             raise ValueError(f"table excitation ({source}): {name} sample {i} is not "
-                             f"finite ({a[i]!r})")
+                             f"finite ({float(a[i])})")
     steps = np.diff(t)
     if (steps <= 0).any():
         i = int(np.argmax(steps <= 0))
         raise ValueError(f"table excitation ({source}): time must increase strictly; "
-                         f"sample {i + 1} ({t[i + 1]!r} s) follows {t[i]!r} s")
+                         f"sample {i + 1} ({float(t[i + 1]):.12g} s) follows {float(t[i]):.12g} s")
     return (t, *arrays.values())
 
 

@@ -138,7 +138,7 @@ def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="
     TypeError
         Both or neither of ``theta2_0`` and ``theta2_0_deg``, or no ``dXg``.
     ValueError
-        An empty or 2-D grid, a non-finite or 2-D ``dXg``.
+        An empty or 2-D grid, an angle not within (-90, 90) degrees, a non-finite or 2-D ``dXg``.
     """
     if (theta2_0 is None) == (theta2_0_deg is None):
         raise TypeError("breakaway() takes the initial pad rotations once: theta2_0 (radians) or theta2_0_deg "
@@ -150,6 +150,7 @@ def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="
     if grid.ndim != 1 or grid.size == 0:
         raise ValueError(f"{key} must be a non-empty 1-D grid of initial pad rotations")
     theta2_0 = grid if theta2_0_deg is None else np.radians(grid)
+    runs.check_start(theta2_0)
     steps = np.asarray(dXg, dtype=float)
     if steps.ndim > 1 or steps.size == 0 or not np.all(np.isfinite(steps)):
         raise ValueError(f"dXg must be a finite number or a non-empty 1-D array, got {dXg!r}")

@@ -29,6 +29,10 @@ CLI_ROWS = [
     ("wrong type", {"dt": [0.01]}, {}, 2, "dt: expected a number, got list"),
     ("YAML 1e-3 string", "dt: 1e-3", {}, 2, "dt: expected a number, got the string '1e-3'"),
     ("non-finite", "theta2_0: .nan", {}, 2, "theta2_0: expected a finite number"),
+    ("start turned past 90 degrees", {"theta2_0": 400}, {}, 2,
+     "theta2_0 400 is greater than or equal to the maximum of 90"),
+    ("start turned by -90 degrees", {"theta2_0": -90}, {}, 2,
+     "theta2_0 -90 is less than or equal to the minimum of -90"),
     ("infinite amplitude", {"excitation": {**CASE["excitation"], "amplitude": float("inf")}}, {}, 2,
      "excitation.amplitude: expected a finite number"),
     ("non-positive length", {"prototype": {**TABLE1["DFP1"], "R1": 0.0}}, {}, 2,
@@ -61,8 +65,9 @@ CLI_ROWS = [
     ("record NaN", {"excitation": {"kind": "record", "file": "r.AT2"}}, {"r.AT2": SINE_AT2.replace(".2E-01", "nan")},
      2, "r.AT2"),
     ("capacity exceeded, policy error", {"excitation": {**CASE["excitation"], "amplitude": 0.45}, "capacity": "error"},
-     {}, 4, r"ring of RB1 at t = 0.03 s \(step 3, RB1 moved by 35.25 cm; capacity R1 sin\(alpha1 - alpha21\) = "
-            r"19.08 cm\)"),
+     {}, 4, r"ring of RB1 at t = 0.03 s \(step 3, RB1 moved by 35.25 cm; the ring is where the pad has turned by "
+            r"alpha1 - alpha21, which compliant sliding reaches at L sin\(alpha1 - alpha21\) = 34.72 cm; one "
+            r"surface's capacity R1 sin\(alpha1 - alpha21\) = 19.08 cm\)"),
     ("solver failure", {"newton": {"tol": 1.0e-30, "max_iter": 2}}, {}, 3,
      "did not converge in sticking .*step 1, time 0.01 s"),
 ]

@@ -120,3 +120,14 @@ def test_unknown_and_missing_parameters():
     del params["hr1"]
     with pytest.raises(ValueError, match=r"missing geometry parameter\(s\) \['hr1'\]"):
         Geometry.from_degrees(**params)
+
+
+def test_every_bad_parameter_is_named_at_once():
+    """Before, only the first was (R1 here), and an angle showed its round trip through radians."""
+    params = {**TABLE1["DFP1"], "R1": -3.0, "h2": -0.1, "alpha1": 100.0, "alpha23": -12.0}
+    with pytest.raises(ValueError) as err:
+        Geometry.from_degrees(**params)
+    msg = str(err.value)
+    for part in ("'R1' is a length and must be > 0 m, got -3", "'h2' is a length and must be > 0 m, got -0.1",
+                 "'alpha1' must lie in 0 < alpha1 < 90 deg, got 100 deg", "got -12 deg"):
+        assert part in msg

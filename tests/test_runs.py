@@ -113,7 +113,9 @@ def test_a_step_beyond_the_pendulum_length_is_an_error_whatever_the_capacity_pol
 
 def test_the_ring_message_says_how_far_rb1_had_moved():
     with pytest.raises(CapacityError, match=r"retaining ring of RB3 at t = 0\.12 s \(step 12, RB1 moved by 37\.48 cm; "
-                                            r"capacity R3 sin\(alpha3 - alpha23\) = 19\.08 cm\)"):
+                                            r"the ring is where the pad has turned by alpha3 - alpha23, which "
+                                            r"compliant sliding reaches at L sin\(alpha3 - alpha23\) = 34\.72 cm; "
+                                            r"one surface's capacity R3 sin\(alpha3 - alpha23\) = 19\.08 cm\)"):
         runs.history("compliant", DFP1, FAR, times=FAR_TIMES, capacity="error")
 
 

@@ -3,12 +3,13 @@
 import numpy as np
 import pytest
 
-from dccss.excitation import Sine, step_times
+from dccss.excitation import Sine, Table, step_times
+from dccss.mechanics import runs
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import ConvergenceError
 from dccss.paper.prototypes import DFP1, TABLE1
-from dccss.simulation import simulate
+from dccss.simulation import breakaway, simulate
 
 #: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, sticking fails at 0.15 s
 BEYOND = Sine(0.9, 10.0, 1.0)
@@ -59,6 +60,19 @@ def test_capacity_error_names_the_plate_reached_and_its_own_capacity(model):
     assert "retaining ring of RB3" in msg
     assert f"R3 sin(alpha3 - alpha23) = {100 * STEEP_TOP.capacity3:.4g} cm" in msg
     assert f"{100 * STEEP_TOP.capacity1:.4g} cm" not in msg
+    device = STEEP_TOP.L * np.sin(STEEP_TOP.alpha3 - STEEP_TOP.alpha23)  # RB1's displacement at the ring
+    assert f"compliant sliding reaches at L sin(alpha3 - alpha23) = {100 * device:.4g} cm" in msg
+
+
+def test_the_ring_is_reached_where_the_message_says():
+    """Under compliant sliding the pad reaches the ring of RB3 where RB1 has moved L sin(alpha3 - alpha23)
+    from RB3 (the pad on C^1C^3 turned by alpha3 - alpha23): the displacement the message quotes."""
+    device = STEEP_TOP.L * np.sin(STEEP_TOP.alpha3 - STEEP_TOP.alpha23)
+    ds = simulate(STEEP_TOP, Table(np.linspace(0.0, 1.0, 2001), np.linspace(0.0, 1.05 * device, 2001)),
+                  model="compliant", dt=0.0005)
+    assert ds.attrs["capacity_exceeded_plate"] == "RB3"
+    reached = ds.attrs["capacity_exceeded_displacement_m"]
+    assert device <= reached <= device + 1.05 * device / 2000  # the first step past it
 
 
 def test_capacity_attributes_say_when_where_and_how_far():
@@ -89,3 +103,14 @@ def test_progress_is_reported_once_at_the_end(monkeypatch):
     simulate(DFP1, Sine(0.27, 30.0, 0.1), model="compliant", dt=0.01,
              progress=lambda n, total: calls.append((n, total)))
     assert calls == [(10, 10)]
+
+
+@pytest.mark.parametrize("theta2_0", [np.nan, np.pi / 2, -2.0, 10.0])
+def test_a_start_that_is_not_an_angle_within_90_degrees_is_refused(theta2_0):
+    """Before, NaN ran to an all-NaN history marked as not failed, and 10 rad (573 degrees) ran."""
+    with pytest.raises(ValueError, match=r"theta2_0 must be a finite angle with \|theta2_0\| < pi/2 rad"):
+        simulate(DFP1, Sine(0.1, 5.0, 1.0), dt=0.01, theta2_0=theta2_0)
+    with pytest.raises(ValueError, match=r"theta2_0 must be a finite angle"):
+        runs.summaries("stick_slip", DFP1, np.zeros((3, 2)), np.array([0.0, theta2_0]))
+    with pytest.raises(ValueError, match=r"theta2_0 must be a finite angle"):
+        breakaway(DFP1, np.array([0.0, theta2_0]), 0.001)

@@ -304,3 +304,15 @@ def test_a_mark_that_cannot_be_placed_is_refused(sweep, mark, drawn):
               "sweep": sweep, "marks": {"here": mark}}
     with pytest.raises(StudyError, match=rf"marks\.here: gives .* but the plots draw the summaries over {drawn}"):
         Study.from_config(config)
+
+
+@pytest.mark.parametrize("changes, message", [
+    ({"theta2_0": 95.0}, r"theta2_0 95.0 is greater than or equal to the maximum of 90"),
+    ({"sweep": {"theta2_0": [-10.0, 90.0]}}, r"sweep\.theta2_0\[1\]: a compatible start needs \|theta2_0\| < 90 "
+                                             r"degrees, got 90"),
+])
+def test_a_start_turned_by_90_degrees_or_more_is_refused(changes, message):
+    """Before, such a start ran (400 degrees turned to about 40 after one step) or failed with advice on the
+    excitation."""
+    with pytest.raises(CaseError, match=message):
+        Study.from_config(tiny(**changes))

@@ -82,14 +82,23 @@ def ring_reached(clearance_1, clearance_3, t, Xg=None) -> dict | None:
 
 
 def capacity_message(geometry, reached, tense="reaches") -> str:
-    """'the pad reaches the retaining ring of RB3 at t = ... s (capacity R3 sin(alpha3 - alpha23)
-    = ... cm) and passes it by up to ... mm' (``tense="reached"``: the same in the past)."""
+    """'the pad reaches the retaining ring of RB3 at t = ... s (step ..., RB1 moved by ... cm; the ring
+    is where the pad has turned by alpha3 - alpha23, which compliant sliding reaches at
+    L sin(alpha3 - alpha23) = ... cm; one surface's capacity R3 sin(alpha3 - alpha23) = ... cm) and
+    passes it by up to ... mm' (``tense="reached"``: the same in the past).
+
+    RB1's displacement from RB3 is what a ring limits: L sin(theta2) under compliant sliding, the pad on
+    C^1C^3, whose corner touches the ring of plate j at theta2 = alpha^j - alpha^2j. Table 1's X_g,max,
+    R^j sin(alpha^j - alpha^2j), is the same limit on one sliding surface (a single pendulum of radius R^j)."""
     j = reached["plate"][-1]
-    capacity = geometry.capacity1 if j == "1" else geometry.capacity3
+    turn = (geometry.alpha1 - geometry.alpha21) if j == "1" else (geometry.alpha3 - geometry.alpha23)
+    surface = geometry.capacity1 if j == "1" else geometry.capacity3
     passes = "passes" if tense == "reaches" else "passed"
     moved = f", RB1 moved by {100 * reached['displacement']:.4g} cm" if "displacement" in reached else ""
     return (f"the pad {tense} the retaining ring of {reached['plate']} at t = {reached['t']:.6g} s "
-            f"(step {reached['step']}{moved}; capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * capacity:.4g} cm) "
+            f"(step {reached['step']}{moved}; the ring is where the pad has turned by alpha{j} - alpha2{j}, which "
+            f"compliant sliding reaches at L sin(alpha{j} - alpha2{j}) = {100 * geometry.L * np.sin(turn):.4g} cm; one "
+            f"surface's capacity R{j} sin(alpha{j} - alpha2{j}) = {100 * surface:.4g} cm) "
             f"and {passes} it by up to {1e3 * reached['by']:.3g} mm")
 
 

@@ -32,10 +32,10 @@ ANGLES = ("alpha1", "alpha3", "alpha21", "alpha23")
 def _first_bad(mask: np.ndarray, value: np.ndarray) -> str:
     """Describe the first offending element of a (possibly batched) parameter."""
     value = np.broadcast_to(value, mask.shape)
-    if mask.ndim == 0:
-        return f"{float(value)!r}"
+    if mask.ndim == 0:  # 12 digits: an angle's round trip through radians shows as given
+        return f"{float(value):.12g}"
     index = tuple(int(i) for i in np.argwhere(mask)[0])
-    return f"{float(value[index])!r} (at batch index {index})"
+    return f"{float(value[index]):.12g} (at batch index {index})"
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,45 +82,41 @@ class Geometry:
     tr3: float
 
     def __post_init__(self):
+        problems = []  # every mistake at once, each naming its parameter
         for f in fields(self):
             value = getattr(self, f.name)
             try:
                 arr = np.asarray(value, dtype=float)
             except (TypeError, ValueError):
-                raise ValueError(
-                    f"geometry parameter {f.name!r} must be a number, got {value!r}"
-                ) from None
+                problems.append(f"geometry parameter {f.name!r} must be a number, got {value!r}")
+                continue
             object.__setattr__(self, f.name, arr if arr.ndim else float(arr))
             bad = ~np.isfinite(arr)
             if bad.any():
-                raise ValueError(
-                    f"geometry parameter {f.name!r} must be finite, got {_first_bad(bad, arr)}"
-                )
+                problems.append(f"geometry parameter {f.name!r} must be finite, got {_first_bad(bad, arr)}")
+        if problems:
+            raise ValueError("; ".join(problems))
         for name in LENGTHS:
             arr = np.asarray(getattr(self, name))
             bad = arr <= 0
             if bad.any():
-                raise ValueError(
-                    f"geometry parameter {name!r} is a length and must be > 0 m, "
-                    f"got {_first_bad(bad, arr)}"
-                )
+                problems.append(f"geometry parameter {name!r} is a length and must be > 0 m, "
+                                f"got {_first_bad(bad, arr)}")
         for name in ("alpha1", "alpha3"):
             arr = np.asarray(getattr(self, name))
             bad = (arr <= 0) | (arr >= np.pi / 2)
             if bad.any():
-                raise ValueError(
-                    f"geometry parameter {name!r} must lie in 0 < {name} < 90 deg, "
-                    f"got {_first_bad(bad, np.degrees(arr))} deg"
-                )
+                problems.append(f"geometry parameter {name!r} must lie in 0 < {name} < 90 deg, "
+                                f"got {_first_bad(bad, np.degrees(arr))} deg")
         for cap, plate, radius in (("alpha21", "alpha1", "R1"), ("alpha23", "alpha3", "R3")):
             arr, lim = np.asarray(getattr(self, cap)), np.asarray(getattr(self, plate))
             bad = (arr <= 0) | (arr >= lim)
             if bad.any():
-                raise ValueError(
-                    f"geometry parameter {cap!r} must lie in 0 < {cap} < {plate} "
-                    f"(the pad cap must be narrower than its plate, {radius}·sin({cap}) < "
-                    f"{radius}·sin({plate})), got {_first_bad(bad, np.degrees(arr))} deg"
-                )
+                problems.append(f"geometry parameter {cap!r} must lie in 0 < {cap} < {plate} (the pad cap must be "
+                                f"narrower than its plate, {radius}·sin({cap}) < {radius}·sin({plate})), "
+                                f"got {_first_bad(bad, np.degrees(arr))} deg")
+        if problems:  # L is meaningful only for valid lengths and angles
+            raise ValueError("; ".join(problems))
         bad = np.asarray(self.L) <= 0
         if bad.any():
             raise ValueError(
@@ -219,12 +215,14 @@ class Geometry:
 
     @cached_property
     def capacity1(self):
-        """Displacement capacity of RB1, R^1 sin(alpha^1 - alpha^21) (m): Table 1's X_g,max."""
+        """Displacement capacity of the lower sliding surface, R^1 sin(alpha^1 - alpha^21) (m): Table 1's
+        X_g,max. The device's, RB1's displacement from RB3 when the pad reaches the ring of RB1, is
+        L sin(alpha^1 - alpha^21) under compliant sliding (``capacity.capacity_message``)."""
         return self.R1 * np.sin(self.alpha1 - self.alpha21)
 
     @cached_property
     def capacity3(self):
-        """Displacement capacity of RB3, R^3 sin(alpha^3 - alpha^23) (m)."""
+        """Displacement capacity of the upper sliding surface, R^3 sin(alpha^3 - alpha^23) (m)."""
         return self.R3 * np.sin(self.alpha3 - self.alpha23)
 
     @cached_property

@@ -80,6 +80,16 @@ def check_policies(capacity, on_failure):
         raise ValueError(f"on_failure must be one of {FAILURE_POLICIES}, got {on_failure!r}")
 
 
+def check_start(theta2_0):
+    """A ValueError names a start angle (rad, or a batch of them) that is not finite or not within
+    (-pi/2, pi/2): no compatible configuration has the pad turned by 90 degrees or more."""
+    theta = np.asarray(theta2_0, dtype=float)
+    bad = ~(np.abs(theta) < np.pi / 2)
+    if bad.any():
+        value = float(theta[bad].flat[0])
+        raise ValueError(f"theta2_0 must be a finite angle with |theta2_0| < pi/2 rad (90 degrees), got {value!r} rad")
+
+
 def motion_of(Xg) -> str:
     """"planar" for one case's X_g of shape (T,), "spatial" for (T, 2)."""
     if np.ndim(Xg) == 1:
@@ -105,6 +115,7 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
     after each step (once, at the end, on the kernels)."""
     registry.model(model)  # a ValueError names the known models
     check_policies(capacity, on_failure)
+    check_start(theta2_0)
     if np.ndim(geometry.L) != 0:
         raise ValueError("a history runs one case: geometry fields must be scalars")
     Xg = np.asarray(Xg, dtype=float)
@@ -194,6 +205,7 @@ def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed
     broadcast over the cases. Policies as for ``history``, per case (``options.on_failure``: "error"
     raises the first failure, naming its case as the error's ``index``; "mark" marks it and goes on).
     ``progress(n, N)`` is called after the cases' steps."""
+    check_start(theta2_0)
     if np.ndim(Xg) == 3:
         return _spatial_summaries(model, geometry, np.asarray(Xg, dtype=float), theta2_0, azimuth, options, capacity,
                                   times, progress)

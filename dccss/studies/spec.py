@@ -311,6 +311,12 @@ def _axis(key, spec, known, symmetric):
         for i, label in enumerate(spec):
             choice(label, f"sweep.component[{i}]", COMPONENTS)
         return np.array(spec, dtype=str)
+    if key == "theta2_0":
+        values = axis_values(spec, "sweep.theta2_0")
+        for i, v in enumerate(values):
+            if not abs(v) < 90.0:
+                raise StudyError(f"sweep.theta2_0[{i}]: a compatible start needs |theta2_0| < 90 degrees, got {v:g}")
+        return values
     if key != "prototype":
         return axis_values(spec, f"sweep.{key}")
     if not isinstance(spec, list) or not spec:
