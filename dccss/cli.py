@@ -54,7 +54,7 @@ def _summary(ds) -> str:
 def _record(a) -> str:
     """The peaks of a record (each component of a pair) after processing, and the scale applied."""
     parts = [("", "record_")] if "record_pga_m_per_s2" in a else \
-        [(f"{c}: ", f"record_{c}_") for c in "xy" if f"record_{c}_pga_m_per_s2" in a]
+        [(f"{i} ({a[f'record_{i}_source']}): ", f"record_{i}_") for i in (1, 2) if f"record_{i}_pga_m_per_s2" in a]
     if not parts:
         return ""
     peaks = "; ".join(f"{label}PGA = {a[p + 'pga_m_per_s2'] / G:.3g} g, PGV = {100 * a[p + 'pgv_m_per_s']:.3g} cm/s, "

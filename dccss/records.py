@@ -342,15 +342,16 @@ def read_peer(path, units=None, quantity=None) -> tuple[float, np.ndarray, Units
     return dt, values, stated
 
 
-_AZIMUTH_WORDS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0}
-_VERTICAL = re.compile(r"^(UP|DWN|DOWN|V|Z|VER|VERT|[A-Z]{2}Z)\b", re.IGNORECASE)
+_AZIMUTH_WORDS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0}
+_VERTICAL = re.compile(r"^(UP|UD|DWN|DOWN|V|Z|VER|VERT|[A-Z]{2}Z)\b", re.IGNORECASE)
 
 
 def peer_azimuth(path):
     """A PEER file's component direction from its line 2 (event, station, component), whose last
     comma-separated field names it: the azimuth in degrees clockwise from north ('180', '270',
-    '000', also 'N', 'E', 'S', 'W' and channel codes ending in them, 'HNE'); "vertical" for a vertical
-    component ('UP', 'DWN', 'V', 'Z', 'HNZ'); None where it says neither (a file of another kind)."""
+    '000', also 'N', 'E', 'S', 'W', channel codes ending in them, 'HNE', and the K-NET/KiK-net 'NS'
+    (north) and 'EW' (east)); "vertical" for a vertical component ('UP', 'UD', 'DWN', 'V', 'Z', 'HNZ');
+    None where it says neither (a file of another kind)."""
     path = Path(path)
     if path.suffix.lower() not in PEER_QUANTITY:
         return None
@@ -363,7 +364,8 @@ def peer_azimuth(path):
         return float(number.group(1)) % 360.0
     if _VERTICAL.match(field):
         return "vertical"
-    word = re.match(r"^(?:[A-Z]{2})?([NESW])\b", field, re.IGNORECASE)
+    word = re.match(r"^(NS|EW)\b", field, re.IGNORECASE) or re.match(r"^(?:[A-Z]{2})?([NESW])\b", field,
+                                                                     re.IGNORECASE)
     return _AZIMUTH_WORDS[word.group(1).upper()] if word else None
 
 
@@ -1002,14 +1004,18 @@ class RecordPair:
 
     def attrs(self) -> dict:
         """netCDF global attributes: the pair, and each component's :meth:`Record.attrs` with its
-        keys prefixed ``record_x_`` and ``record_y_`` (source, sha256, units, processing, peaks,
-        warning)."""
+        keys prefixed ``record_1_`` and ``record_2_`` by its file's place in the pair (source, sha256,
+        units, processing, peaks, warning; ``azimuth_deg`` where the file names its direction). The
+        components are numbered, not called x and y: placed by their azimuths, the first file's need
+        not be x (``record_orientation`` says how they are placed)."""
         attrs = {"excitation": "record", "excitation_components": 2, "excitation_form": "record pair",
                  "record_npts": self.npts, "record_dt_s": self.dt, "record_peak_horizontal_displacement_m": self.pgd,
                  "record_orientation": self.orientation, "record_rotation_deg": self.rotation}
-        for name, record in (("x", self.x), ("y", self.y)):
-            attrs.update({f"record_{name}_{k.removeprefix('record_')}": v for k, v in record.attrs().items()
+        for i, record in enumerate((self.x, self.y)):
+            attrs.update({f"record_{i + 1}_{k.removeprefix('record_')}": v for k, v in record.attrs().items()
                           if k != "excitation"})
+            if self.azimuths is not None:
+                attrs[f"record_{i + 1}_azimuth_deg"] = self.azimuths[i]
         return {**attrs, **getattr(self, "scaling", {})}
 
     def __repr__(self):

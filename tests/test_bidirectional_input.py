@@ -283,12 +283,12 @@ def test_pair_attrs_name_both_files():
     assert plain(attrs)
     assert attrs["excitation"] == "record" and attrs["excitation_components"] == 2
     assert attrs["excitation_form"] == "record pair"
-    assert attrs["record_x_source"] == "synthetic.AT2" and attrs["record_y_source"] == "synthetic_y.AT2"
-    assert attrs["record_x_sha256"] == SYNTHETIC_SHA256
-    assert attrs["record_y_sha256"] == hashlib.sha256(SYNTHETIC_Y.read_bytes()).hexdigest()
-    assert attrs["record_x_units"] == attrs["record_y_units"] == "G"
+    assert attrs["record_1_source"] == "synthetic.AT2" and attrs["record_2_source"] == "synthetic_y.AT2"
+    assert attrs["record_1_sha256"] == SYNTHETIC_SHA256
+    assert attrs["record_2_sha256"] == hashlib.sha256(SYNTHETIC_Y.read_bytes()).hexdigest()
+    assert attrs["record_1_units"] == attrs["record_2_units"] == "G"
     assert attrs["record_npts"] == 2000 and attrs["record_dt_s"] == 0.01
-    for name, path in (("x", SYNTHETIC), ("y", SYNTHETIC_Y)):
+    for name, path in (("1", SYNTHETIC), ("2", SYNTHETIC_Y)):
         own = Record.from_file(path).attrs()
         assert all(attrs[f"record_{name}_{k.removeprefix('record_')}"] == v for k, v in own.items()
                    if k != "excitation")
@@ -300,14 +300,14 @@ def test_pair_honours_each_files_units_and_reports_warnings(tmp_path):
     y = write_accel(tmp_path / "y.AT2", units="CM/S/S")  # the same motion, written in cm/s²
     pair = RecordPair.from_files([x, y])
     assert np.allclose(pair.displacement_samples[:, 0], pair.displacement_samples[:, 1], rtol=1e-6, atol=1e-12)
-    assert (pair.attrs()["record_x_units"], pair.attrs()["record_y_units"]) == ("G", "CM/S/S")
+    assert (pair.attrs()["record_1_units"], pair.attrs()["record_2_units"]) == ("G", "CM/S/S")
     with pytest.warns(RecordWarning) as caught:
         loud = RecordPair.from_files([x, y], scale=100.0)  # 10 g: implausible, both components
     assert len(caught) == 2
     attrs = loud.attrs()
-    assert attrs["record_x_warning"] == str(caught[0].message) and "'x.AT2'" in attrs["record_x_warning"]
-    assert attrs["record_y_warning"] == str(caught[1].message) and "'y.AT2'" in attrs["record_y_warning"]
-    assert loud.warning == f"{attrs['record_x_warning']}; {attrs['record_y_warning']}"
+    assert attrs["record_1_warning"] == str(caught[0].message) and "'x.AT2'" in attrs["record_1_warning"]
+    assert attrs["record_2_warning"] == str(caught[1].message) and "'y.AT2'" in attrs["record_2_warning"]
+    assert loud.warning == f"{attrs['record_1_warning']}; {attrs['record_2_warning']}"
     with pytest.raises(ValueError, match=r"record file '.*x.AT2': line 3 states units 'G', but units 'cm/s2'"):
         RecordPair.from_files([x, y], units="cm/s2")
 
@@ -383,7 +383,7 @@ def test_case_plane_table_and_pair(tmp_path):
     shipped = case_from({**CASE, "excitation": {"kind": "record", "file": ["records/synthetic.AT2",
                                                                             "records/synthetic_y.AT2"]}},
                         RECORDS.parent)
-    assert shipped.excitation.attrs()["record_y_source"] == "synthetic_y.AT2"
+    assert shipped.excitation.attrs()["record_2_source"] == "synthetic_y.AT2"
 
 
 @pytest.mark.parametrize("excitation, message", [

@@ -127,7 +127,7 @@ def test_dccss_run_on_a_record_pair(tmp_path, capsys):
     assert "bidirectional, 2000 steps (2001 states): max tilt" in line
     ds = xr.load_dataset(out)
     assert ds.sizes["t"] == 2001 and ds.attrs["motion"] == "bidirectional"
-    assert ds.attrs["record_x_source"].endswith("synthetic.AT2")
+    assert ds.attrs["record_1_source"].endswith("synthetic.AT2")
     assert np.abs(ds["Xg_y"].values).max() > 0.01  # both components move the ground
     # the y component alone, along 90 deg, is a planar run of that record
     from dccss.records import Record

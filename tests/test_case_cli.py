@@ -233,7 +233,8 @@ def test_the_summary_line_states_the_records_peaks_and_scale(tmp_path, capsys):
     assert "; record PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm (scale 2)" in line
     pair = {**one, "excitation": {**one["excitation"], "file": ["synthetic.AT2", "synthetic_y.AT2"]}}
     assert main(["run", str(write(tmp_path, pair)), "-o", str(tmp_path / "b.nc")]) == 0
-    assert "; record x: PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm; y: PGA = 0.6 g" in capsys.readouterr().out
+    assert ("; record 1 (synthetic.AT2): PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm; 2 (synthetic_y.AT2): PGA = 0.6 g"
+            in capsys.readouterr().out)
 
 
 @pytest.mark.parametrize("changes, message", [

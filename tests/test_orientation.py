@@ -30,7 +30,8 @@ def station(tmp_path):
 
 @pytest.mark.parametrize("field, azimuth", [("180", 180.0), ("000", 0.0), ("090", 90.0),
                                             ("270 (USGS STATION 117)", 270.0), ("E", 90.0), ("HNN", 0.0),
-                                            ("UP", "vertical"), ("HNZ", "vertical"),
+                                            ("UP", "vertical"), ("HNZ", "vertical"), ("UD", "vertical"),
+                                            ("NS", 0.0), ("EW", 90.0),
                                             ("PGA 0.35 g", None)])
 def test_the_component_azimuth_is_read_from_line_2(tmp_path, field, azimuth):
     assert peer_azimuth(_peer(tmp_path / "r.AT2", field, np.zeros(10))) == azimuth
@@ -93,3 +94,13 @@ def test_rotation_in_a_case_and_as_a_sweep_axis(tmp_path, station):
     t = study.grid.times(0.01)
     ground = study.grid.ground_motion(np.arange(3), t)
     assert np.allclose(ground[:, 2], -ground[:, 0], atol=1e-15)
+
+
+def test_a_placed_pairs_attributes_name_each_file_by_its_place_not_x_and_y(station):
+    """Before, the first file's attributes were called record_x_* although, placed by the azimuths, x (east)
+    is minus the 270 file (the second): its peaks were printed as x's."""
+    south, west = station
+    attrs = RecordPair.from_files([south, west]).attrs()
+    assert attrs["record_1_source"] == "ELC180.AT2" and attrs["record_1_azimuth_deg"] == 180.0
+    assert attrs["record_2_source"] == "ELC270.AT2" and attrs["record_2_azimuth_deg"] == 270.0
+    assert not any(k.startswith(("record_x_", "record_y_")) for k in attrs)

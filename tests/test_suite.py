@@ -105,9 +105,20 @@ def test_bad_record_axes_are_refused(suite, sweep, message):
 def test_a_pair_is_named_by_its_station(suite):
     from dccss.studies.spec import record_entries
 
-    pairs = record_entries([["RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270.AT2"], ["a_x.AT2", "b_y.AT2"]],
-                           suite)
-    assert list(pairs) == ["RSN6_IMPVALL.I_I-ELC", "a_x+b_y"]
+    pairs = record_entries([["RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270.AT2"], ["a_x.AT2", "b_y.AT2"],
+                            ["S01_STA01000.AT2", "S01_STA01090.AT2"], ["A000.AT2", "B090.AT2"]], suite)
+    # the digit 000 and 090 share is not the station's (it was named S01_STA010)
+    assert list(pairs) == ["RSN6_IMPVALL.I_I-ELC", "a_x+b_y", "S01_STA01", "A000+B090"]
+
+
+def test_a_suite_history_names_its_record_and_a_swept_friction_its_key(suite):
+    """Before, a history without a record passed the check and its workflow job failed ("excitation:
+    missing key(s) ['file']"); a bad first sweep.friction was reported as structure.friction."""
+    with pytest.raises(StudyError, match=r"histories\[0\]: no record: a suite's history names one of its records "
+                                         r"\['RSN11_NORTH', 'RSN12_SOUTH', 'RSN13_EAST'\]"):
+        Study.from_config({**CONFIG, "histories": [{"scale": 2.5}]}, suite)
+    with pytest.raises(StudyError, match=r"sweep\.friction\[0\]: 0\.0 is outside"):
+        Study.from_config({**CONFIG, "sweep": {**CONFIG["sweep"], "friction": [0.0, 0.05]}}, suite)
 
 
 def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):

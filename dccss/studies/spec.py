@@ -88,7 +88,8 @@ def sweep_spec(config: dict, models=None, record=None) -> dict:
 def record_entries(spec, base: Path) -> dict:
     """{name: entry} of a ``record`` sweep axis: a list of files, pairs [x, y] of files, or glob patterns
     (relative to ``base``; a pattern gives its matches in sorted order). A file is named by its stem, a
-    pair by its station: the stems' common start (without trailing separators), else 'x+y'."""
+    pair by its station: the stems' common start (without trailing separators, nor a digit the two
+    components' three-digit azimuth codes share, as 000 and 090), else 'x+y'."""
     if not isinstance(spec, list) or not spec:
         raise StudyError(f"sweep.record: expected a non-empty list of files, pairs [x, y] or patterns, got {spec!r}")
     out = {}
@@ -98,7 +99,9 @@ def record_entries(spec, base: Path) -> dict:
             if len(entry) != 2 or not all(isinstance(f, str) for f in entry):
                 raise StudyError(f"{key}: a pair is a list of two files [x, y], got {entry!r}")
             stems = [Path(f).stem for f in entry]
-            common = os.path.commonprefix(stems).rstrip("_-. ")
+            codes = [re.fullmatch(r"(.*?)\d{3}", stem) for stem in stems]  # azimuth codes: ..._000, ..._090
+            starts = [c.group(1) for c in codes] if all(codes) else stems  # 000 and 090 share a digit, not a name
+            common = os.path.commonprefix(starts).rstrip("_-. ")
             items = [(common if common and common not in stems else "+".join(stems), entry)]
         elif isinstance(entry, str):
             if any(c in entry for c in "*?["):
@@ -379,7 +382,12 @@ def _structure(value, axes) -> Structure | None:
             raise StudyError("structure.friction: missing: give the device's friction coefficient, or sweep it "
                              "(sweep.friction)")
         value = {**value, "friction": float(axes["friction"][0])}
-    base = structure_from(value)
+        try:
+            base = structure_from(value)
+        except CaseError as err:  # the value taken from the sweep is named there
+            raise StudyError(str(err).replace("structure.friction", "sweep.friction[0]", 1)) from None
+    else:
+        base = structure_from(value)
     for key in swept:
         for i, v in enumerate(axes[key]):
             try:
@@ -468,6 +476,9 @@ def _histories(histories, axes, dt) -> list:
     for i, point in enumerate(points):
         if dt is None and "dt" not in point:
             raise StudyError(f"histories[{i}]: no dt: give it in the point or as the study's dt")
+        if "record" in axes and "record" not in point:  # a suite has no base record to default to
+            raise StudyError(f"histories[{i}]: no record: a suite's history names one of its records "
+                             f"{np.asarray(axes['record']).tolist()}")
     return points
 
 
