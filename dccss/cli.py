@@ -74,9 +74,11 @@ def _structure(ds) -> str:
     else:
         stroke, force = np.abs(ds["stroke"].values), np.abs(ds["shear_ratio"].values)
         residual = f"{100 * float(ds['stroke'].values[-1]):+.3f} cm"
+    end = ("residual stroke" if "stopped_at_s" not in ds.attrs and not ds.attrs.get("failed") else
+           f"stroke where the history ends (t = {float(ds['t'].values[-1]):.6g} s)")  # a cut history has no residual
     return (f"; structure (mu = {ds.attrs['structure_friction']:g}, zeta = {ds.attrs['structure_damping']:g}, "
             f"T = {ds.attrs['structure_period_s']:.3g} s): peak |u| = {100 * np.max(stroke):.3f} cm, "
-            f"residual stroke = {residual}, peak |F/W| = {np.max(force):.4f}")
+            f"{end} = {residual}, peak |F/W| = {np.max(force):.4f}")
 
 
 def _kinematics(ds) -> str:

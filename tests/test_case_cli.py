@@ -265,3 +265,15 @@ def test_two_identical_files_are_not_a_pair(tmp_path):
     (tmp_path / "copy.AT2").write_bytes((tmp_path / "synthetic.AT2").read_bytes())
     with pytest.raises(CaseError, match="are two identical files"):
         case_from({**CASE, "excitation": {"kind": "record", "file": ["synthetic.AT2", "copy.AT2"]}}, tmp_path)
+
+
+@pytest.mark.parametrize("capacity, scale, words", [("continue", 1.0, "residual stroke = "),
+                                                    ("stop", 6.0, "stroke where the history ends (t = ")])
+def test_a_cut_history_states_no_residual_stroke(tmp_path, capsys, capacity, scale, words):
+    """Before, the stroke where capacity: stop cut the history was printed as its residual stroke."""
+    _records(tmp_path)
+    case = {**CASE, "model": "compliant", "structure": {"friction": 0.02}, "capacity": capacity,
+            "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": scale}}
+    assert main(["run", str(write(tmp_path, case)), "-o", str(tmp_path / "a.nc")]) == 0
+    out = capsys.readouterr().out
+    assert words in out and ("stopped_at_s" in xr.open_dataset(tmp_path / "a.nc").attrs) == (capacity == "stop")
