@@ -1,14 +1,18 @@
 """The one driver of runs (dccss.mechanics.runs): planar or spatial by the ground motion's shape, the
 capacity and failure policies as events with a status and a message, for histories and sweeps alike."""
 
+import re
+
 import numpy as np
 import pytest
 
-from dccss.excitation import Sine, step_times
+from dccss.excitation import Oriented, Sine, step_times
 from dccss.mechanics import runs, spatial, summaries
 from dccss.mechanics.capacity import CapacityError
+from dccss.mechanics.geometry import Geometry
 from dccss.mechanics.newton import ConvergenceError
 from dccss.paper.prototypes import DFP1
+from dccss.simulation import simulate
 
 #: far beyond DFP1's capacity: the pad passes RB1's ring at 0.04 s, the solver fails at 0.15 s
 BEYOND = Sine(0.9, 10.0, 1.0)
@@ -133,3 +137,34 @@ def test_a_sweep_marks_or_names_the_case_beyond_reach():
     spatial_X = np.stack([X, np.zeros_like(X)], axis=-1)
     out = runs.summaries("compliant", DFP1, spatial_X, times=FAR_TIMES, options=NewtonOptions(on_failure="mark"))
     assert list(out["failed"]) == [False, True, False] and out["failure_time"][1] == 0.73
+
+
+def test_oscillation_finds_a_growing_step_to_step_oscillation_only():
+    t = np.linspace(0.0, 1.0, 40)
+    smooth = np.column_stack([np.sin(3 * t), t ** 2])
+    assert runs.oscillation(smooth) == 0.0
+    wobble = smooth.copy()
+    wobble[-6:, 1] += 1e-5 * (-1.8) ** np.arange(6)  # period 2, growing 1.8 times a step
+    assert runs.oscillation(wobble) == pytest.approx(1.8, rel=0.05)
+    assert runs.oscillation(smooth[:10]) == 0.0  # too short to tell
+
+
+# a deep device with a flat pad, found losing stick-slip's stability well before its rings
+DEEP = Geometry.from_degrees(R1=0.5, R3=0.8, alpha1=60.0, alpha3=50.0, h2=0.1, alpha21=10.0, alpha23=8.0, hr1=0.01,
+                             hr3=0.2, hmin1=0.05, hmin3=0.05, tr1=0.02, tr3=0.02)
+
+
+@pytest.mark.parametrize("azimuth", [None, 90.0])
+def test_a_stick_slip_oscillation_is_explained_and_a_smaller_dt_fails_earlier(azimuth):
+    """Stick-slip on DEEP oscillates from step to step, growing, from about 16-20 degrees (its rings are at
+    42 degrees): the failure says so instead of advising a smaller dt, which fails earlier."""
+    sine = Sine(0.6 * DEEP.L * np.sin(DEEP.alpha3 - DEEP.alpha23), 5.0, 0.5)
+    failed = []
+    for dt in (0.002, 0.0005):
+        with pytest.raises(ConvergenceError) as err:
+            simulate(DEEP, sine if azimuth is None else Oriented(sine, azimuth), model="stick_slip", dt=dt)
+        assert "oscillate from step to step" in str(err.value) and "reduce dt" not in str(err.value)
+        failed.append(float(re.search(r"time ([0-9.]+) s", str(err.value)).group(1)))
+    assert failed[1] < failed[0]
+    ds = simulate(DEEP, sine, model="compliant", dt=0.0005)  # compliant sliding is stable there
+    assert ds.attrs["failed"] == 0 and np.abs(ds["theta2"]).max() > 20.0

@@ -184,13 +184,38 @@ def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring
     return out
 
 
+def oscillation(x, window=8, last=4) -> float:
+    """How many times per step a step-to-step oscillation of ``x`` (a history, time first) grows over its
+    ``last`` steps: the second differences less their level over the ``window`` steps before alternate in
+    sign and grow, to more than ten times that window's spread. 0 where they do not (a smooth history)."""
+    d2 = np.diff(np.asarray(x, dtype=float), 2, axis=0)
+    if len(d2) < window + last:
+        return 0.0
+    before, tail = d2[-window - last:-last], d2[-last:]
+    r = tail - np.median(before, axis=0)
+    spread = np.median(np.abs(before - np.median(before, axis=0)), axis=0)
+    alternating = np.all(np.sign(r[1:]) == -np.sign(r[:-1]), axis=0) & np.all(np.abs(r[1:]) > np.abs(r[:-1]), axis=0)
+    growing = alternating & (np.abs(r[-1]) > 10 * spread)
+    if not growing.any():
+        return 0.0
+    return float(np.max(np.abs(r[-1][growing] / r[-2][growing])))
+
+
 def _explain(err, geometry, out, motion, times, Xg):
-    """A solver failure, prefixed with the ring the pad passed before it (if it did)."""
+    """A solver failure, prefixed with the ring the pad passed before it (if it did), or explained by the
+    steps before it oscillating with a growing amplitude (where a smaller dt does not help either)."""
     if out is None:
         return err
     gaps = clearances(out, geometry, motion)
     reached = ring_reached(gaps[0], gaps[1], times[:len(gaps[0])], Xg[:len(gaps[0])])
     if reached is None:
+        growth = oscillation(out["q"][:, 3:5] if motion == "planar" else out["G"][:, :2])
+        if growth:
+            return err.with_hint(
+                f"The steps before it oscillate from step to step, growing about {growth:.2g} times a step (the pad "
+                "centre's second differences alternate in sign): the model's steps have lost their stability at "
+                "this rotation of this device, and a smaller dt fails earlier, not later. Lower the excitation, or "
+                "use a model that is stable there (docs: Failures, capacity and exit codes).")
         return err
     return err.with_hint(
         "Beyond the ring the model describes no real device and a smaller dt does not help: set capacity: "
