@@ -71,8 +71,14 @@ def test_the_suite_statistics_equal_numpys_on_the_records_values(suite):
     counted = ds["records_capacity_exceeded"].sel(model="compliant", scale=2.5)
     assert int(counted) == int(ds["capacity_exceeded"].sel(model="compliant", scale=2.5).sum())
     assert float(ds["records_capacity_exceeded_fraction"].sel(model="compliant", scale=2.5)) == int(counted) / 3
-    # a signed summary has no lognormal percentile
-    assert np.isnan(ds["stroke_end_suite"].sel(statistic="p84_lognormal")).all()
+    # an end value, signed for one component, by its size: records pushed to either side do not cancel
+    for name in ("stroke_end", "theta2_end"):
+        values = ds[name].sel(model="stick_slip", scale=2.5).values
+        stats = ds[f"{name}_suite"].sel(model="stick_slip", scale=2.5)
+        assert (values < 0).any() and (values > 0).any()
+        assert float(stats.sel(statistic="mean")) == pytest.approx(np.mean(np.abs(values)), rel=1e-14)
+        assert float(stats.sel(statistic="max")) == np.max(np.abs(values))
+        assert np.isfinite(float(stats.sel(statistic="p84_lognormal")))
 
 
 def test_failed_records_are_counted_and_left_out_of_the_statistics(suite):

@@ -138,7 +138,9 @@ def statistics(ds) -> xr.Dataset:
     """Every summary reduced over ``record`` (each record's value is its own peak or end value):
     ``<name>_suite`` with a ``statistic`` coordinate (STATISTICS: the mean, the median, the 84th
     percentile of a lognormal fit exp(mean ln x + std ln x) (NaN where a value is not > 0) and the
-    largest), over the records that did not fail; ``records_capacity_exceeded`` and
+    largest), over the records that did not fail; an end value (``*_end``: a residual rotation, rise or
+    stroke, signed for one component) by its size |x|, as a design value is one (signed, records
+    pushed to either side would cancel in the mean); ``records_capacity_exceeded`` and
     ``records_failed``, the number of records whose pad reaches a ring or whose run fails, and
     ``records_counted``, the number the statistics are over."""
     out = {}
@@ -148,13 +150,15 @@ def statistics(ds) -> xr.Dataset:
         flag = name in ("failed", "capacity_exceeded") or name.startswith("record_")
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
-        values = var.where(ok)
+        size = name.endswith("_end")
+        values = abs(var.where(ok)) if size else var.where(ok)
         logs = np.log(values.where(values > 0))
         lognormal = np.exp(logs.mean("record") + logs.std("record", ddof=1))
         lognormal = lognormal.where((values > 0).sum("record") == ok.sum("record"))
         stack = [values.mean("record"), values.median("record"), lognormal, values.max("record")]
         out[f"{name}_suite"] = xr.concat(stack, dim="statistic").assign_attrs(
-            units=var.attrs.get("units", "1"), long_name=f"{var.attrs.get('long_name', name)}: suite statistic")
+            units=var.attrs.get("units", "1"),
+            long_name=f"{var.attrs.get('long_name', name)}{', its size' if size else ''}: suite statistic")
     out["records_capacity_exceeded"] = ds["capacity_exceeded"].astype(bool).sum("record").astype(np.int32).assign_attrs(
         units="1", long_name="number of records whose pad reaches a retaining ring")
     out["records_failed"] = failed.sum("record").astype(np.int32).assign_attrs(
