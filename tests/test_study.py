@@ -316,3 +316,22 @@ def test_a_start_turned_by_90_degrees_or_more_is_refused(changes, message):
     excitation."""
     with pytest.raises(CaseError, match=message):
         Study.from_config(tiny(**changes))
+
+
+def test_a_capacity_amplitude_is_each_swept_devices_own():
+    """amplitude: capacity is R1 sin(alpha1 - alpha21) of each case's device, as the history of that point
+    takes it (before, the sweep took the base device's for every case)."""
+    from dccss.studies import run_chunk
+
+    study = Study.from_config(tiny(excitation={"kind": "sine", "amplitude": "capacity", "omega": 30.0,
+                                               "duration": 0.3}, chunk_size=6))
+    part = run_chunk(study, "compliant", 0)
+    for i, point in enumerate(study.grid.point(k) for k in range(study.grid.n_cases)):
+        device = Geometry.from_degrees(**{**TABLE1["DFP1"], "alpha23": point["alpha21"], **point})
+        t = step_times(Sine(device.capacity1, 30.0, 0.3), 0.01)
+        alone = summarize("compliant", device, Sine(device.capacity1, 30.0, 0.3).displacement(t)[:, None], times=t)
+        assert float(part["theta2_max_abs"].values.ravel()[i]) == pytest.approx(float(alone["theta2_max_abs"][0]),
+                                                                                 rel=1e-12), point
+    history = history_case(study, 0, "compliant")
+    assert history.excitation.amplitude == Geometry.from_degrees(
+        **{**TABLE1["DFP1"], "alpha21": 10.0, "alpha23": 10.0, "h2": 0.15}).capacity1

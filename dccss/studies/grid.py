@@ -69,6 +69,16 @@ class Grid:
         idx = np.unravel_index(np.asarray(cases), self.shape)
         return {name: vals[i] for (name, vals), i in zip(self.axes.items(), idx)}
 
+    def own(self, cases, excitation) -> dict:
+        """The excitation's swept parameters of each case: the sweep's values, and a sine's amplitude
+        "capacity" as each case's own device's R1 sin(alpha1 - alpha21) (as the case file of a history
+        takes it), not the base device's."""
+        values = self.values(cases)
+        own = {k: values[k] for k in excitation.parameters if k in values}
+        if self.study.excitation_spec.get("amplitude") == "capacity" and "amplitude" not in own:
+            own["amplitude"] = np.broadcast_to(self.geometry(cases).capacity1, (len(cases),)).astype(float)
+        return own
+
     def point(self, case) -> dict:
         """{axis: value} of one case (str for prototype names, float otherwise)."""
         return {k: (str(v[0]) if k in ("record", "prototype", "component") else float(v[0]))
@@ -135,7 +145,7 @@ class Grid:
         out = np.zeros((len(t), len(cases), excitation.components))
         summaries = {name: np.zeros(len(cases)) for name in structure.SUMMARIES}
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
-            own = {k: values[k][i] for k in excitation.parameters if k in values}
+            own = {k: v[i] for k, v in self.own(cases, excitation).items()}
             factor = float(values["scale"][i]) if "scale" in values else 1.0
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
@@ -152,7 +162,7 @@ class Grid:
         the excitation evaluates its own swept parameters for the batch; ``scale`` multiplies the
         result, ``component`` keeps x, y or both."""
         excitation, values = self.excitation(cases), self.values(cases)
-        own = {k: values[k] for k in excitation.parameters if k in values}
+        own = self.own(cases, excitation)
         Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
         scale = values.get("scale", np.ones(len(cases)))
         if excitation.components == 1:
