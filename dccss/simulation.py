@@ -8,6 +8,7 @@ import xarray as xr
 
 from .excitation import step_times
 from .mechanics import models, runs
+from .mechanics.capacity import CapacityError
 from .mechanics.newton import NewtonOptions
 from .mechanics.structure import Structure, respond
 from .results import breakaway_dataset, history_dataset, spatial_dataset, structure_variables
@@ -36,7 +37,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         Newton-Raphson tolerance and iteration cap.
     capacity : str
         What to do when the pad reaches a retaining ring: 'continue' (flag it), 'stop' (the dataset
-        ends at that step) or 'error' (raise CapacityError). In every case the attributes
+        ends at that step) or 'error' (raise CapacityError; with on_failure 'mark' the history ends at
+        that step, marked failed there, as a study marks such a case). In every case the attributes
         ``capacity_exceeded_at_s``, ``capacity_exceeded_plate`` (RB1 or RB3, the plate whose ring is
         reached first) and ``capacity_exceeded_by_m`` (how far the pad passes a ring at most) say when,
         where and by how much, and ``capacity_exceeded_displacement_m`` how far RB1 had moved from its
@@ -95,7 +97,9 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     ds.attrs["capacity_policy"] = capacity
     ds.attrs["failed"] = int(run.failure is not None)
     if run.failure is not None:
-        ds.attrs.update(failure_time_s=float(times[run.steps]), failure_message=str(run.failure))
+        at_ring = isinstance(run.failure, CapacityError)  # capacity "error", marked: the run ends at the ring
+        ds.attrs.update(failure_time_s=run.reached["t"] if at_ring else float(times[run.steps]),
+                        failure_message=str(run.failure))
     if run.reached:
         ds.attrs.update(capacity_exceeded_at_s=run.reached["t"], capacity_exceeded_plate=run.reached["plate"],
                         capacity_exceeded_by_m=run.reached["by"],

@@ -114,3 +114,15 @@ def test_a_start_that_is_not_an_angle_within_90_degrees_is_refused(theta2_0):
         runs.summaries("stick_slip", DFP1, np.zeros((3, 2)), np.array([0.0, theta2_0]))
     with pytest.raises(ValueError, match=r"theta2_0 must be a finite angle"):
         breakaway(DFP1, np.array([0.0, theta2_0]), 0.001)
+
+
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_capacity_error_under_mark_ends_the_history_at_the_ring_marked_failed(model):
+    """As a study marks such a case (before, the history raised CapacityError and stopped the study)."""
+    ds = simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model=model, dt=0.01, capacity="error", on_failure="mark")
+    stopped = simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model=model, dt=0.01, capacity="stop")
+    assert ds.attrs["failed"] == 1 and "retaining ring of RB3" in ds.attrs["failure_message"]
+    assert ds.attrs["failure_time_s"] == ds.attrs["capacity_exceeded_at_s"] == float(ds["t"][-1])
+    assert np.array_equal(ds["theta2"].values, stopped["theta2"].values)
+    with pytest.raises(CapacityError):
+        simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model=model, dt=0.01, capacity="error")

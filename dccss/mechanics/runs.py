@@ -8,7 +8,8 @@ applied here:
 
 * ``capacity``: "continue" flags the first step beyond a retaining ring (``Run.reached``); "stop"
   ends the run there, a terminal event as scipy's ``solve_ivp`` treats them (a later solver failure
-  is then not one); "error" raises ``capacity.history_error`` (a sweep: ``capacity.case_error``).
+  is then not one); "error" raises ``capacity.history_error`` (a sweep: ``capacity.case_error``), or
+  with on_failure "mark" ends the run there as failed, as a sweep marks the case.
 * ``on_failure``: "error" raises the solver's ConvergenceError, explained by the ring the pad passed
   before it if it did (beyond the ring the model describes no real device and a smaller dt does not
   help); "mark" keeps what converged and says where it failed.
@@ -151,7 +152,10 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
         progress(run.steps - 1, len(Xg) - 1)
     reached = ring_reached(*clearances(out, geometry, motion), times[:run.steps], Xg[:run.steps])
     if reached and capacity == "error":
-        raise history_error(geometry, reached)
+        if on_failure == "error":
+            raise history_error(geometry, reached)
+        failure = history_error(geometry, reached)  # marked: the history ends at the ring, as a sweep's case
+        return Run(out, motion, "failed", str(failure), reached, failure)
     if failure is None and run.steps == limit:
         failure = IncompatibleMotion(reach_message(geometry, Xg, limit, times[limit]))
         if on_failure == "error":
