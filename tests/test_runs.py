@@ -10,7 +10,7 @@ from dccss.excitation import Oriented, Sine, step_times
 from dccss.mechanics import runs, spatial, summaries
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.geometry import Geometry
-from dccss.mechanics.newton import ConvergenceError
+from dccss.mechanics.newton import ConvergenceError, NewtonOptions
 from dccss.paper.prototypes import DFP1
 from dccss.simulation import simulate
 
@@ -168,3 +168,15 @@ def test_a_stick_slip_oscillation_is_explained_and_a_smaller_dt_fails_earlier(az
     assert failed[1] < failed[0]
     ds = simulate(DEEP, sine, model="compliant", dt=0.0005)  # compliant sliding is stable there
     assert ds.attrs["failed"] == 0 and np.abs(ds["theta2"]).max() > 20.0
+
+
+def test_a_sweep_case_that_passes_a_ring_then_fails_keeps_the_ring():
+    """As its history does (before, the sweep reported a failed case as never reaching the ring)."""
+    model = "stick_slip"  # its solver gives up past the ring (compliant sliding goes on to L)
+    run = runs.history(model, DFP1, X, times=TIMES, on_failure="mark")
+    assert run.status == "failed" and run.reached["t"] < TIMES[run.steps]
+    out = runs.summaries(model, DFP1, np.stack([X, 0.1 * X], axis=1), times=TIMES,
+                         options=NewtonOptions(on_failure="mark"))
+    assert out["failed"][0] and out["failure_time"][0] == TIMES[run.steps]
+    assert out["capacity_exceeded"][0] and out["capacity_time"][0] == run.reached["t"]
+    assert not out["failed"][1] and not out["capacity_exceeded"][1] and np.isnan(out["capacity_time"][1])

@@ -121,12 +121,14 @@ def history_error(geometry, reached) -> CapacityError:
 def mark_failures(summaries, failure, reached, capacity) -> dict:
     """Per-case summaries with their failures marked: the cases that failed (``failure``: the time,
     NaN if none) have NaN summaries; under ``capacity="error"`` reaching a ring (``reached``) is
-    such a failure. Adds ``failed``, ``failure_time`` and ``capacity_time``."""
+    such a failure; otherwise a ring reached before the failure stays flagged, with its time. Adds
+    ``failed``, ``failure_time`` and ``capacity_time``."""
     if capacity == "error":
         failure = np.where(np.isnan(failure) | (reached < failure), reached, failure)
     failed = ~np.isnan(failure)
     out = {k: np.where(failed, np.nan, v) if np.issubdtype(np.asarray(v).dtype, np.floating) else v
            for k, v in summaries.items()}
-    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), False, out["capacity_exceeded"])
+    before = reached < failure  # a ring the pad reached before the solver failed is kept, as a history keeps it
+    out["capacity_exceeded"] = np.where(failed & (capacity != "error"), before, out["capacity_exceeded"])
     return out | {"failed": failed, "failure_time": failure,
-                  "capacity_time": np.where(failed & (capacity != "error"), np.nan, reached)}
+                  "capacity_time": np.where(failed & (capacity != "error") & ~before, np.nan, reached)}
