@@ -335,3 +335,13 @@ def test_a_capacity_amplitude_is_each_swept_devices_own():
     history = history_case(study, 0, "compliant")
     assert history.excitation.amplitude == Geometry.from_degrees(
         **{**TABLE1["DFP1"], "alpha21": 10.0, "alpha23": 10.0, "h2": 0.15}).capacity1
+
+
+@pytest.mark.parametrize("sweep, message", [
+    ({"h2": [0.12, 0.15, 0.12]}, r"sweep\.h2: 0\.12 is given twice"),
+    ({"prototype": ["DFP1", "DFP1"]}, r"sweep\.prototype: 'DFP1' is given twice"),
+])
+def test_a_sweep_value_given_twice_is_refused(sweep, message):
+    """Before, a numeric one computed its cases twice and a prototype one failed in the plots' job."""
+    with pytest.raises(CaseError, match=message):
+        Study.from_config(tiny(sweep=sweep, histories=[]))

@@ -300,7 +300,17 @@ def _axes(sweep, known, symmetric) -> dict:
 
 
 def _axis(key, spec, known, symmetric):
-    """The values of sweep axis ``key`` (a record axis: None, its entries are read with the excitation)."""
+    """The values of sweep axis ``key`` (a record axis: None, its entries are read with the excitation),
+    each once."""
+    values = _axis_values(key, spec, known, symmetric)
+    listed = [] if values is None else values.tolist()
+    twice = [v for i, v in enumerate(listed) if v in listed[:i]]
+    if twice:
+        raise StudyError(f"sweep.{key}: {twice[0]!r} is given twice; give each value once")
+    return values
+
+
+def _axis_values(key, spec, known, symmetric):
     if key not in AXES:
         raise StudyError(f"sweep: unknown axis {key!r}; allowed: {list(AXES)}")
     if symmetric and key in PLATE3_FOLLOWS:
