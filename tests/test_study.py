@@ -1,6 +1,7 @@
 """Studies from config: validation, chunking, batched = one-case results, failures, the workflow."""
 
 import hashlib
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -222,6 +223,8 @@ def test_a_job_reruns_only_when_its_part_of_the_study_changes(tmp_path):
     (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
     assert snakemake(work, "--configfile", "tiny.yaml").returncode == 0
     assert planned(work, "tiny.yaml") == {}
+    moved = shutil.copytree(work, tmp_path.parent / f"{tmp_path.name}_moved", symlinks=True)  # times kept
+    assert planned(moved, "tiny.yaml") == {}  # a project moved whole reruns nothing (the folder was a parameter)
     edits = {
         "description": (dict(study={"name": "tiny", "description": "another text"}), {"study_plots": 1}),
         "marks": (dict(marks={"here": {"alpha21": 8.0, "h2": 0.12}}), {"study_plots": 1}),

@@ -1,6 +1,7 @@
 # A study file (config/studies/*.yaml): loaded and checked once, before any job runs. Each job's
 # params are the part of the study file that its output depends on, so that Snakemake reruns a
 # job when, and only when, that part changes (editing the description reruns only the plots).
+import os
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
@@ -10,6 +11,8 @@ from dccss.mechanics.models import REGISTRY
 from dccss.studies import Study, history_mapping, sweep_spec
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
+# relative to the working directory, as a job's parameter: a project moved or copied whole reruns nothing
+STUDY_FILE = Path(os.path.relpath(STUDY_FILE))
 try:
     STUDY = Study.from_config(config, STUDY_FILE.parent)
 except CaseError as err:
