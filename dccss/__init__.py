@@ -43,7 +43,8 @@ _LAZY = {"Sine": "excitation", "Table": "excitation", "Geometry": "mechanics.geo
          "SingularJacobianError": "mechanics.newton", "simulate": "simulation",
          "breakaway": "simulation", "CapacityError": "mechanics.capacity", "Record": "records",
          "RecordWarning": "records", "Scaled": "excitation", "Oriented": "excitation", "PlaneTable": "excitation",
-         "Component": "excitation", "RecordPair": "records"}
+         "Component": "excitation", "RecordPair": "records", "Structure": "mechanics.structure",
+         "load_case": "case"}
 __all__ = ["__version__", *_LAZY]
 
 

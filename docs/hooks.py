@@ -31,7 +31,10 @@ TYPE_NAMES = {"number": "a number", "integer": "an integer", "string": "a string
 
 
 def _cell(text) -> str:
-    return " ".join(str(text).split()).replace("|", "\\|")
+    """A table cell: one line, pipes escaped, and a placeholder as <name> shown, not read as an HTML
+    tag (outside code spans, where it is literal)."""
+    parts = " ".join(str(text).split()).replace("|", "\\|").split("`")
+    return "`".join(p if i % 2 else p.replace("<", "&lt;").replace(">", "&gt;") for i, p in enumerate(parts))
 
 
 def _code(value) -> str:

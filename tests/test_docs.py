@@ -178,3 +178,15 @@ def test_the_workflow_meets_the_catalogs_standardized_usage():
         run = subprocess.run([sys.executable, "-m", "snakemake", "--lint", *args], cwd=ROOT, capture_output=True,
                              text=True, timeout=300)
         assert run.returncode == 0 and "Congratulations" in run.stdout + run.stderr, run.stdout + run.stderr
+
+
+def test_the_api_pages_names_are_importable_from_dccss():
+    """The API page says its names import from ``dccss``: Structure and load_case did not."""
+    import dccss
+
+    page = (DOCS / "reference/api.md").read_text().split("## Adding a model")[0]
+    names = [path.rsplit(".", 1)[-1] for path in re.findall(r"^::: (dccss\.[\w.]+)", page, re.MULTILINE)]
+    assert len(names) > 10
+    for name in names:
+        assert getattr(dccss, name, None) is not None or importlib.util.find_spec(f"dccss.{name}"), name
+        exec(f"from dccss import {name}", {})

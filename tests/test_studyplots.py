@@ -394,3 +394,5 @@ def test_convergence_table_measures_the_distance_between_the_models():
                    "failed": True}  # compared up to the failed run's last step
     fig = studyplots.convergence([row, {**row, "dt": 0.01, "failed": False}], "caption")
     assert all(ax.get_xscale() == "log" and ax.get_yscale() == "log" for ax in fig.axes)
+    # two steps: the legend says the order is fitted on both, not on "the 4 smallest"
+    assert all(ax.get_legend().get_title().get_text() == "order fitted on all 2 Δt" for ax in fig.axes)

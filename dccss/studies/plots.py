@@ -767,7 +767,9 @@ def convergence(rows, caption: str) -> Figure:
         ax.set_xlabel("Δt (s)")
         ax.set_ylabel(f"{label} ({unit})")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8, title=f"order fitted on the {FIT_POINTS} smallest Δt", title_fontsize=8)
+        steps = len({r["dt"] for r in rows})
+        fitted = f"the {FIT_POINTS} smallest Δt" if steps > FIT_POINTS else f"all {steps} Δt"
+        ax.legend(fontsize=8, title=f"order fitted on {fitted}", title_fontsize=8)
     fig.suptitle("Stick-slip against Δt: the sticking rotation and the distance to compliant sliding", fontsize=12)
     caption_line(fig, caption)
     return freeze(fig)
