@@ -502,7 +502,9 @@ def _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group=None):
             ax.set_ylim(ye[0], ye[-1])
             ax.set_xlabel(_axis_label(ds, x))
             ax.set_ylabel(_axis_label(ds, y))
-            ax.set_title(f"{_title(model)}{''.join(f', {v}' for v in where.values())}: {label}", fontsize=10)
+            # a category's row names it too: on two lines, so that the title stays within its panel
+            ax.set_title(f"{_title(model)}{''.join(f', {v}' for v in where.values())}:{chr(10) if where else ' '}"
+                         f"{label}", fontsize=10)
         if mesh is not None:
             fig.colorbar(mesh, ax=list(axs[:, c]), label=f"{label} ({unit})", shrink=0.9)
     cap_label, fail_label = _flag_labels(ds, models, [*drawn, group] if group else drawn)
