@@ -309,7 +309,7 @@ def test_more_than_two_axes_map_the_first_two_numeric_with_a_row_per_prototype()
     title = figure_title(fig)
     assert r"maps over $\alpha^{21}$ and $h^{2}$ per prototype" in title and "not drawn" not in title
     for proto in ("DFP1", "DFP2"):
-        ax = next(ax for ax in fig.axes if ax.get_title() == f"Stick-Slip, {proto}: max |θ²|")
+        ax = next(ax for ax in fig.axes if ax.get_title() == f"Stick-Slip, {proto}:\nmax |θ²|")
         (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
         expected = ds["theta2_max_abs"].sel(model="stick_slip", prototype=proto).values.T
         assert np.allclose(mesh.get_array().reshape(expected.shape), expected)
