@@ -180,3 +180,9 @@ def test_a_sweep_case_that_passes_a_ring_then_fails_keeps_the_ring():
     assert out["failed"][0] and out["failure_time"][0] == TIMES[run.steps]
     assert out["capacity_exceeded"][0] and out["capacity_time"][0] == run.reached["t"]
     assert not out["failed"][1] and not out["capacity_exceeded"][1] and np.isnan(out["capacity_time"][1])
+
+
+def test_an_oscillation_caught_three_steps_before_the_failure_is_explained():
+    """At a coarser step the oscillation grows faster (8 times a step here): three steps of it are enough."""
+    with pytest.raises(ConvergenceError, match="oscillate from step to step"):
+        simulate(DEEP, Sine(0.6, 4.0, 1.6), model="stick_slip", dt=0.004)

@@ -188,7 +188,7 @@ def _planar(model, geometry, Xg, theta2_0, normals, options, times, stop_at_ring
     return out
 
 
-def oscillation(x, window=8, last=4) -> float:
+def oscillation(x, window=8, last=3) -> float:
     """How many times per step a step-to-step oscillation of ``x`` (a history, time first) grows over its
     ``last`` steps: the second differences less their level over the ``window`` steps before alternate in
     sign and grow, to more than ten times that window's spread. 0 where they do not (a smooth history)."""
