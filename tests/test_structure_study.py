@@ -89,7 +89,7 @@ def test_a_record_pair_study_drives_each_component_through_the_structure(tmp_pat
               "structure": {"friction": 0.04}, "sweep": {"component": ["x", "both"], "scale": [1.0, 2.0]}}
     study = Study.from_config(config, tmp_path)
     t = study.grid.times(0.01)
-    imposed, summaries = study.grid.imposed(np.arange(4), t)
+    imposed, responses = study.grid.imposed(np.arange(4), t)
     assert imposed.shape == (len(t), 4, 2)
     assert not imposed[:, 0, 1].any()  # x alone: no y stroke
     # scale 2 of the x component (of the pair read at scale 1.5): the response to twice its acceleration
@@ -100,7 +100,7 @@ def test_a_record_pair_study_drives_each_component_through_the_structure(tmp_pat
     # (the component runs as two-component motion with y = 0: the circular interaction's integrator,
     # equal to the exact one-component solution to 1e-9 m)
     assert np.allclose(imposed[:, 1, 0], 0.0 - r.stroke[:, 0], rtol=0, atol=1e-9)
-    assert summaries["stroke_max_abs"][1] == pytest.approx(np.max(np.abs(r.stroke)), rel=0, abs=1e-9)
+    assert np.max(np.abs(responses[1].stroke)) == pytest.approx(np.max(np.abs(r.stroke)), rel=0, abs=1e-9)
 
 
 def test_the_shipped_isolated_structure_study(shipped_study):
@@ -114,3 +114,24 @@ def test_the_shipped_isolated_structure_study(shipped_study):
     assert np.all(np.diff(stroke) < 0)  # more friction, less stroke
     history = xr.open_dataset(work / "results/studies/isolated_structure/histories/stick_slip_1.nc")
     assert history.attrs["structure_friction"] == 0.04 and "stroke_x" in history
+
+
+@pytest.mark.parametrize("capacity", ["stop", "error"])
+def test_the_structures_summaries_end_where_the_case_does(capacity):
+    """A case that capacity "stop" ends at the ring has its stroke summaries up to there, as its history; a
+    failed one (capacity "error", marked) has none (before, both kept the whole record's)."""
+    study = Study.from_config(changed(SINE, capacity=capacity, on_failure="mark", chunk_size=2,
+                                      sweep={"friction": [0.02], "amplitude": [0.08, 0.4]},
+                                      histories=[{"friction": 0.02, "amplitude": a} for a in (0.08, 0.4)]))
+    part = run_chunk(study, "compliant", 0)
+    assert list(part["capacity_exceeded"].values) == [0, 1]
+    for i in range(2):
+        history = history_case(study, i, "compliant").run()
+        if capacity == "error" and i == 1:
+            assert part["failed"].values[1] == 1 and np.isnan(part["stroke_max_abs"].values[1])
+            continue
+        stroke = np.abs(history["stroke"].values)
+        assert part["stroke_max_abs"].values[i] == pytest.approx(stroke.max(), rel=1e-12)
+        assert part["stroke_end"].values[i] == pytest.approx(history["stroke"].values[-1], rel=1e-12)
+    if capacity == "stop":
+        assert history.attrs["stopped_at_s"] < 4.0  # the history, and so the summaries, ended at the ring

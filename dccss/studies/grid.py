@@ -133,17 +133,17 @@ class Grid:
         """The step times at step size dt (s) of the cases' excitation (the study's without ``cases``)."""
         return step_times(self.study.excitation if cases is None else self.excitation(cases), dt)
 
-    def imposed(self, cases, t) -> tuple[np.ndarray, dict]:
+    def imposed(self, cases, t) -> tuple[np.ndarray, list]:
         """The motion imposed on RB1 relative to RB3 at the step times t, (T, n) or (T, n, 2), and the
-        structure's summaries of each case (``structure.SUMMARIES``; {} without a structure): the
+        structure's response of each case (``structure.Response``; [] without a structure): the
         ground motion, or minus the stroke of each case's structure, driven by that case's ground
         acceleration (its scale, component or azimuth, its sine's amplitude and omega) on a pendulum
         of its device's L."""
         if self.study.structure is None:
-            return self.ground_motion(cases, t), {}
+            return self.ground_motion(cases, t), []
         excitation, values = self.excitation(cases), self.values(cases)
         out = np.zeros((len(t), len(cases), excitation.components))
-        summaries = {name: np.zeros(len(cases)) for name in structure.SUMMARIES}
+        responses = []
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
             own = {k: v[i] for k, v in self.own(cases, excitation).items()}
             factor = float(values["scale"][i]) if "scale" in values else 1.0
@@ -153,9 +153,8 @@ class Grid:
             ground = structure.Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
             response = structure.respond(ground, t, device, mine)
             out[:, i] = 0.0 - response.stroke
-            for name, value in structure.summarize(response).items():
-                summaries[name][i] = value
-        return (out[..., 0] if excitation.components == 1 else out), summaries
+            responses.append(response)
+        return (out[..., 0] if excitation.components == 1 else out), responses
 
     def ground_motion(self, cases, t) -> np.ndarray:
         """X_g (T, n) of the cases at the step times t, or (T, n, 2) for a bidirectional excitation:

@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 
 from ..case import Case, case_from
-from ..mechanics import runs
+from ..mechanics import runs, structure
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
 from ..mechanics.newton import ConvergenceError
@@ -15,6 +15,23 @@ from ..mechanics.summaries import TILT_SUMMARIES, specs
 from ..results import variable
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
+
+
+def structure_summaries(responses, part, times, capacity) -> dict:
+    """The structure's summaries of each case (``structure.SUMMARIES``; {} without a structure) over the
+    steps its case's kinematic summaries are over: NaN for a failed case, up to the ring for one that
+    ``capacity`` "stop" ended there."""
+    out = {name: np.full(len(responses), np.nan) for name in STRUCTURE_SUMMARIES} if responses else {}
+    for i, response in enumerate(responses):
+        if part["failed"][i]:
+            continue
+        end = len(times)
+        if capacity == "stop" and np.isfinite(part["capacity_time"][i]):
+            end = int(np.searchsorted(times, part["capacity_time"][i])) + 1
+        kept = response._replace(stroke=response.stroke[:end], shear_ratio=response.shear_ratio[:end])
+        for name, value in structure.summarize(kept).items():
+            out[name][i] = value
+    return out
 
 
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:
@@ -30,7 +47,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         group = cases[mine]
         times = grid.times(dt, group)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
-        ground, own = grid.imposed(group, times)
+        ground, responses = grid.imposed(group, times)
         try:
             part = runs.summaries(model, grid.geometry(group), ground, grid.theta2_0_of(group),
                                   azimuth=grid.azimuth_of(group), normals=study.normals, options=study.options,
@@ -39,6 +56,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             index = getattr(err, "index", None)
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
+        own = structure_summaries(responses, part, times, study.capacity)
         for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
     names = {**specs(), **STRUCTURE_SUMMARIES, **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
