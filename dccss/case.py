@@ -195,23 +195,25 @@ def record_from(value, base: Path, key="excitation"):
             units_from(units)
         except ValueError as err:
             raise CaseError(f"{key}.units: {err}") from None
-    def read(factor):
+    def read(factor, cut=window):
         try:
             if isinstance(file, list):
-                return RecordPair.from_files([base / f for f in file], scale=factor, window=window,
+                return RecordPair.from_files([base / f for f in file], scale=factor, window=cut,
                                              baseline=baseline, units=units, rotation=rotation)
-            return Record.from_file(base / file, scale=factor, window=window, baseline=baseline, units=units)
+            return Record.from_file(base / file, scale=factor, window=cut, baseline=baseline, units=units)
         except ValueError as err:
             raise CaseError(f"{key}.file: {err}") from None
 
     record = read(scale)
     if spectral is None:
         return record
-    return _scaled_to_spectrum(record, read, spectral, isinstance(file, list), f"{key}.scale")
+    whole = record if window is None else read(scale, None)  # the spectrum is the whole record's, as its processing
+    return _scaled_to_spectrum(whole, read, spectral, isinstance(file, list), f"{key}.scale")
 
 
 def _scaled_to_spectrum(record, read, spec, pair, key):
-    """The record read again at the scale that makes its spectral acceleration the target's."""
+    """The record read again (windowed, if it is) at the scale that makes the spectral acceleration of
+    ``record`` (the whole record) the target's."""
     from .records import G
     from .spectra import PAIR_DEFINITIONS, spectral_acceleration
 

@@ -85,3 +85,18 @@ def test_a_record_scaled_to_a_spectral_acceleration_has_it(file, definition):
 def test_bad_spectral_scales_are_refused(scale, message):
     with pytest.raises(CaseError, match=message):
         case_from({**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": scale}}, RECORDS)
+
+
+@pytest.mark.parametrize("file", ["synthetic.AT2", ["synthetic.AT2", "synthetic_y.AT2"]])
+def test_a_window_does_not_change_the_scale_to_a_spectrum(file):
+    """The scale factor comes from the whole record's spectrum (it came from the window's), so the motion inside a
+    window is the whole scaled record's there."""
+    spec = {"to": "spectral_acceleration", "period": 2.5, "target": 0.3}
+    whole = case_from({**CASE, "excitation": {"kind": "record", "file": file, "scale": spec}}, RECORDS).excitation
+    cut = case_from({**CASE, "excitation": {"kind": "record", "file": file, "scale": spec, "window": [2.0, 6.0]}},
+                    RECORDS).excitation
+    assert cut.scaling["record_sa_unscaled_g"] == whole.scaling["record_sa_unscaled_g"]
+    t = cut.time
+    np.testing.assert_allclose(cut.displacement(t), whole.displacement(t), rtol=0, atol=1e-15)
+    # and the window's own spectrum differs: the factor would have
+    assert spectra.spectral_acceleration(cut, 2.5) != pytest.approx(0.3 * G, rel=1e-6)
