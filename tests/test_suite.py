@@ -227,3 +227,20 @@ def test_a_suite_of_tables(tmp_path):
     theta = ds["theta2_max_abs"].sel(model="compliant", scale=1.0).values
     L = float(study.grid.geometry([0]).L[0])
     assert np.allclose(np.radians(theta), np.arcsin(np.array([0.05, 0.08]) / L), rtol=1e-4)
+
+
+def test_a_suite_scaled_to_a_spectrum_keeps_each_records_factor(suite):
+    """Each record's own scale factor and unscaled spectral acceleration are in the combined dataset (they were
+    only in the chunks' attributes)."""
+    spec = {"to": "spectral_acceleration", "period": 1.0, "target": 0.2}
+    study = Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": spec},
+                               "sweep": {"record": ["records/*.AT2"]}, "models": ["compliant"], "histories": []},
+                              suite)
+    ds = _combined(study)
+    assert ds["record_sa_unscaled"].attrs["units"] == "g" and ds["record_sa_unscaled"].attrs["scaled_to_sa_g"] == 0.2
+    for name in NAMES:
+        a = study.records[name].attrs()
+        assert float(ds["record_scale"].sel(record=name)) == a["record_scale"]
+        assert float(ds["record_sa_unscaled"].sel(record=name)) == a["record_sa_unscaled_g"]
+        assert a["record_scale"] * a["record_sa_unscaled_g"] == pytest.approx(0.2, rel=1e-12)
+    assert len(set(ds["record_scale"].values)) == 3  # a factor of each record's own

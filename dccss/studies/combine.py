@@ -118,7 +118,21 @@ def record_peaks(study) -> dict:
         out[name] = xr.Variable(("record",), np.array(values), {"units": units, "long_name": long_name + pair})
     sources = [" ".join(e) if isinstance(e, list) else e for e in study.record_entries.values()]
     out["record_source"] = xr.Variable(("record",), np.array(sources, dtype=object),
-                                       {"long_name": "the record's file (a pair's two files, x then y)"})
+                                       {"long_name": "the record's file (a pair's two files, in the order given)"})
+    attrs = [excitation.attrs() for excitation in study.records.values()]
+    scales = [float(a.get("record_scale", a.get("record_1_scale", np.nan))) for a in attrs]
+    out["record_scale"] = xr.Variable(("record",), np.array(scales), {
+        "units": "1", "long_name": "the factor the record's accelerations are scaled by (before a sweep's scale)"})
+    if "record_scaled_to_sa_g" in attrs[0]:  # each record's own factor, from its own spectrum
+        keys = ("record_scaled_to_sa_g", "record_scaling_period_s", "record_scaling_damping",
+                "record_scaling_definition")
+        out["record_sa_unscaled"] = xr.Variable(("record",), np.array([a["record_sa_unscaled_g"] for a in attrs]), {
+            "units": "g", "long_name": "the record's spectral acceleration before scaling",
+            **{k.removeprefix("record_"): attrs[0][k] for k in keys if k in attrs[0]}})
+    if "record_orientation" in attrs[0]:
+        out["record_orientation"] = xr.Variable(("record",), np.array([a["record_orientation"] for a in attrs],
+                                                                      dtype=object),
+                                                {"long_name": "how the pair's components are placed as x and y"})
     return out
 
 
