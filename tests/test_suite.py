@@ -71,6 +71,7 @@ def test_the_suite_statistics_equal_numpys_on_the_records_values(suite):
     counted = ds["records_capacity_exceeded"].sel(model="compliant", scale=2.5)
     assert int(counted) == int(ds["capacity_exceeded"].sel(model="compliant", scale=2.5).sum())
     assert float(ds["records_capacity_exceeded_fraction"].sel(model="compliant", scale=2.5)) == int(counted) / 3
+    assert "capacity_time_suite" not in ds and "failure_time_suite" not in ds  # event times are no demand
     # an end value, signed for one component, by its size: records pushed to either side do not cancel
     for name in ("stroke_end", "theta2_end"):
         values = ds[name].sel(model="stick_slip", scale=2.5).values
@@ -244,3 +245,13 @@ def test_a_suite_scaled_to_a_spectrum_keeps_each_records_factor(suite):
         assert float(ds["record_sa_unscaled"].sel(record=name)) == a["record_sa_unscaled_g"]
         assert a["record_scale"] * a["record_sa_unscaled_g"] == pytest.approx(0.2, rel=1e-12)
     assert len(set(ds["record_scale"].values)) == 3  # a factor of each record's own
+
+
+def test_a_rotation_given_twice_is_refused(suite):
+    """Before, the sweep silently overrode excitation.rotation (and the chunks' attributes kept the latter)."""
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "file": ["records/RSN11_NORTH.AT2",
+                                                                        "records/RSN12_SOUTH.AT2"], "rotation": 30.0,
+                                                 "window": [0.0, 8.0]},
+              "sweep": {"rotation": [0.0, 30.0]}, "histories": []}
+    with pytest.raises(StudyError, match=r"sweep\.rotation: the excitation gives a rotation itself"):
+        Study.from_config(config, suite)

@@ -149,7 +149,8 @@ STATISTICS = ("mean", "median", "p84_lognormal", "max")
 
 
 def statistics(ds) -> xr.Dataset:
-    """Every summary reduced over ``record`` (each record's value is its own peak or end value):
+    """Every summary but the event times (``capacity_time``, ``failure_time``) reduced over ``record``
+    (each record's value is its own peak or end value):
     ``<name>_suite`` with a ``statistic`` coordinate (STATISTICS: the mean, the median, the 84th
     percentile of a lognormal fit exp(mean ln x + std ln x) (NaN where a value is not > 0) and the
     largest), over the records that did not fail; an end value (``*_end``: a residual rotation, rise or
@@ -161,7 +162,8 @@ def statistics(ds) -> xr.Dataset:
     failed = ds["failed"].astype(bool)
     ok = ~failed
     for name, var in ds.data_vars.items():
-        flag = name in ("failed", "capacity_exceeded") or name.startswith("record_")
+        # flags, the records' own data and event times (NaN where the event did not happen) are no demand
+        flag = name in ("failed", "capacity_exceeded") or name.startswith("record_") or name.endswith("_time")
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
         size = name.endswith("_end")

@@ -350,6 +350,9 @@ def _swept_excitation(excitation, axes, spec):
     if "rotation" in axes and "rotation" not in excitation.parameters:
         raise StudyError("sweep.rotation: turns a record pair (file: [x, y]); a one-component excitation is "
                          "oriented by sweep.azimuth")
+    if "rotation" in axes and "rotation" in spec:
+        raise StudyError("sweep.rotation: the excitation gives a rotation itself (excitation.rotation), which the "
+                         "sweep would override: give one of the two")
     if "azimuth" in axes and "azimuth" not in excitation.parameters:
         if excitation.components != 1:
             raise StudyError("sweep.azimuth: orients a one-component excitation, but this one has two components "
