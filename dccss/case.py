@@ -228,6 +228,10 @@ def _scaled_to_spectrum(record, read, spec, pair, key):
     if not pair and "definition" in spec:
         raise CaseError(f"{key}.definition: says how a pair's spectral acceleration is taken; this record has one "
                         f"component")
+    duration = record.t_end - record.t_start
+    if period > duration:
+        raise CaseError(f"{key}.period: {period:g} s is longer than the record ({duration:g} s): an oscillator of that "
+                        f"period has not completed one cycle of response; give a period within the record")
     unscaled = spectral_acceleration(record, period, damping, definition)
     if not unscaled > 0:
         raise CaseError(f"{key}: the record's spectral acceleration at T = {period:g} s is {unscaled!r}: it cannot "

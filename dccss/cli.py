@@ -288,11 +288,11 @@ def main(argv=None) -> int:
         animation.add_parser(sub)
         plan.add_parser(sub)
     args = parser.parse_args(argv)
+    warnings.formatwarning = _warn_line  # "dccss: warning: ...", not the library's file and line
     if hasattr(args, "handler"):
         return args.handler(args)
     if args.command == "check":
         return _check(args)
-    warnings.formatwarning = _warn_line
     start = time.perf_counter()
     problem = _output_error(args.output)
     if problem is not None:

@@ -75,6 +75,8 @@ def test_a_record_scaled_to_a_spectral_acceleration_has_it(file, definition):
 @pytest.mark.parametrize("scale, message", [
     ({"to": "spectral_acceleration", "period": 0.0, "target": 0.4}, r"excitation\.scale\.period: must be > 0"),
     ({"to": "spectral_acceleration", "period": 1.0, "target": -0.4}, r"excitation\.scale\.target: must be > 0"),
+    ({"to": "spectral_acceleration", "period": 100.0, "target": 0.4},
+     r"excitation\.scale\.period: 100 s is longer than the record \(19\.99 s\)"),
     ({"to": "pga", "period": 1.0, "target": 0.4}, r"excitation\.scale\.to: must be one of \['spectral_acceleration'\]"),
     ({"to": "spectral_acceleration", "period": 1.0}, r"excitation\.scale: missing key\(s\) \['target'\]"),
     ({"to": "spectral_acceleration", "period": 1.0, "target": 0.4, "damping": 1.0},
