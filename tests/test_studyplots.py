@@ -396,3 +396,16 @@ def test_convergence_table_measures_the_distance_between_the_models():
     assert all(ax.get_xscale() == "log" and ax.get_yscale() == "log" for ax in fig.axes)
     # two steps: the legend says the order is fitted on both, not on "the 4 smallest"
     assert all(ax.get_legend().get_title().get_text() == "order fitted on all 2 Δt" for ax in fig.axes)
+
+
+def test_a_legend_group_too_long_for_the_figure_goes_on_more_lines():
+    """A one-column histories figure clipped its six-entry legend line at both sides."""
+    from matplotlib.lines import Line2D
+
+    group = [Line2D([], [], label=label) for label in ("X_g,x", "X_g,y", "u_x, stroke", "u_y", "Compliant Sliding",
+                                                       "Stick-Slip")]
+    ring = Line2D([], [], label="pad reaches a retaining ring")
+    assert studyplots._legend_rows([group, [ring]], 12.0) == [group + [ring]]  # all on one line where they fit
+    rows = studyplots._legend_rows([group, [ring]], 5.0)
+    assert [h for r in rows for h in r] == group + [ring] and len(rows) == 3
+    assert all(sum(0.6 + 0.065 * len(h.get_label()) for h in r) < 0.95 * 5.0 for r in rows)

@@ -136,10 +136,23 @@ def _value_text(ds, name, value):
 
 def _legend_rows(groups, width):
     """Groups of legend handles as rows of a table (one line if they all fit in ``width`` inches)."""
+    def fits(row):
+        return sum(0.6 + 0.065 * len(h.get_label()) for h in row) < 0.95 * width
+
     handles = [h for group in groups for h in group]
-    if sum(0.6 + 0.065 * len(h.get_label()) for h in handles) < 0.95 * width:
+    if fits(handles):
         return [handles]
-    return [group for group in groups if group]
+    rows = []
+    for group in groups:  # a group too long for one line goes on as many as it needs
+        line = []
+        for h in group:
+            if line and not fits(line + [h]):
+                rows.append(line)
+                line = []
+            line.append(h)
+        if line:
+            rows.append(line)
+    return rows
 
 
 def _complete(fig, title, caption, groups):
