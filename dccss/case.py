@@ -204,11 +204,10 @@ def record_from(value, base: Path, key="excitation"):
         except ValueError as err:
             raise CaseError(f"{key}.file: {err}") from None
 
-    record = read(scale)
     if spectral is None:
-        return record
-    whole = record if window is None else read(scale, None)  # the spectrum is the whole record's, as its processing
-    return _scaled_to_spectrum(whole, read, spectral, isinstance(file, list), f"{key}.scale")
+        return read(scale)
+    # the spectrum is the whole record's (as its processing), the scaled record then windowed
+    return _scaled_to_spectrum(read(scale, None), read, spectral, isinstance(file, list), f"{key}.scale")
 
 
 def _scaled_to_spectrum(record, read, spec, pair, key):

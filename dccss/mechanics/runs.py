@@ -31,6 +31,7 @@ import numpy as np
 from . import backend, registry, spatial
 from .capacity import (
     CAPACITY_POLICIES,
+    CapacityError,
     IncompatibleMotion,
     beyond_reach,
     capacity_message,
@@ -57,7 +58,8 @@ class Run:
     status : "completed", "stopped" (at a ring, capacity "stop") or "failed" (on_failure "mark").
     message : what ended it early ("" when completed).
     reached : when, where and by how much the pad passed a ring (``capacity.ring_reached``), or None.
-    failure : the solver's error (on_failure "mark"), or None.
+    failure : what ended it as failed under on_failure "mark": the solver's ConvergenceError, or the
+        CapacityError of a ring reached under capacity "error"; None otherwise.
     """
 
     history: dict
@@ -65,7 +67,7 @@ class Run:
     status: str
     message: str
     reached: dict | None
-    failure: ConvergenceError | None
+    failure: ConvergenceError | CapacityError | None
 
     @property
     def steps(self) -> int:
@@ -198,8 +200,8 @@ def oscillation(x, window=8, last=3) -> float:
     before, tail = d2[-window - last:-last], d2[-last:]
     r = tail - np.median(before, axis=0)
     spread = np.median(np.abs(before - np.median(before, axis=0)), axis=0)
-    alternating = np.all(np.sign(r[1:]) == -np.sign(r[:-1]), axis=0) & np.all(np.abs(r[1:]) > np.abs(r[:-1]), axis=0)
-    growing = alternating & (np.abs(r[-1]) > 10 * spread)
+    alternating = np.all(np.sign(r[1:]) == -np.sign(r[:-1]), axis=0)
+    growing = alternating & np.all(np.abs(r[1:]) > np.abs(r[:-1]), axis=0) & (np.abs(r[-1]) > 10 * spread)
     if not growing.any():
         return 0.0
     return float(np.max(np.abs(r[-1][growing] / r[-2][growing])))

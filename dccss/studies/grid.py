@@ -143,9 +143,9 @@ class Grid:
             return self.ground_motion(cases, t), []
         excitation, values = self.excitation(cases), self.values(cases)
         out = np.zeros((len(t), len(cases), excitation.components))
-        responses = []
+        responses, parameters = [], self.own(cases, excitation)
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
-            own = {k: v[i] for k, v in self.own(cases, excitation).items()}
+            own = {k: v[i] for k, v in parameters.items()}
             factor = float(values["scale"][i]) if "scale" in values else 1.0
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
