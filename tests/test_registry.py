@@ -34,8 +34,8 @@ def rigid_case(k, xg, q0, constants, flags, history_out, summary_out, status_out
             hits[n, k], hres[n, k] = 0, 0.0
         if summarise:
             u = compiled.plate_positions(compiled.frames(q), pad)
-            compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius, dims, 0,
-                                    capacity)
+            acc, count = compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius,
+                                                 dims, 0, capacity)
         done[k] = n + 1
     compiled.keep_summaries(k, acc_all, count_all, acc, count)
 

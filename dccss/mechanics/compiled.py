@@ -129,6 +129,7 @@ def _has_nan(q):
 
 
 NAN9 = (NAN,) * 9
+NAN_ACC = (NAN,) * N_ACC
 
 
 @jit
@@ -417,44 +418,43 @@ def _nanmin(a, b):
 
 @jit
 def summarise_step(acc, count, n, now, q, u, distance, radius, dims, its, capacity):
-    """Fold step n (configuration q, corner positions u and their distances to the circle
-    centres) into a case's summaries ``acc``, ``count``; the stick-slip entries are folded by
-    the caller. Once the pad has reached a ring under a capacity policy other than "continue"
-    the summaries stay as they were at that step."""
-    stopped = acc[STOPPED] == 1.0
-    if acc[FAILURE] != acc[FAILURE] and not stopped and _has_nan(q):
-        acc[FAILURE] = now
-    if stopped:
-        return
+    """A case's summaries ``acc`` (N_ACC floats), ``count`` (N_COUNT integers) with step n folded in
+    (configuration q, corner positions u and their distances to the circle centres): the new
+    (acc, count). The stick-slip entries are folded by the caller. Once the pad has reached a ring
+    under a capacity policy other than "continue" the summaries stay as they were at that step.
+    (Tuples, not arrays: no reference counting in the step loop.)"""
+    (theta2_max, rise_max, i_a, i_b, i_c, i_d, clearance, theta2_end, rise_end, stick_turn, rise_stick, failure,
+     reached, stopped) = acc
+    if stopped == 1.0:
+        return acc, count
+    if failure != failure and _has_nan(q):
+        failure = now
     theta2 = q[5] * DEGREES
     rise = q[7] - dims[REST]
     reach1 = _nanmax(abs(u[0].real), abs(u[1].real))
     reach3 = _nanmax(abs(u[2].real), abs(u[3].real))
     gap = _nanmin(dims[RING1] - reach1, dims[RING3] - reach3)
-    acc[THETA2_MAX_ABS] = _fmax(acc[THETA2_MAX_ABS], abs(theta2))
-    acc[RISE_MAX] = _fmax(acc[RISE_MAX], rise)
-    for i in range(4):
-        acc[I_A_MAX + i] = _fmax(acc[I_A_MAX + i], distance[i] - radius[i // 2])
-    acc[CLEARANCE_MIN] = _fmin(acc[CLEARANCE_MIN], gap)
-    acc[THETA2_END] = theta2
-    acc[RISE_END] = rise
-    count[ITERATIONS_MAX] = max(count[ITERATIONS_MAX], its)
-    count[ITERATIONS_SUM] += its
-    count[STEPS] = n
-    if acc[REACHED] != acc[REACHED] and gap < 0:
-        acc[REACHED] = now
-        count[REACHED_STEP] = n
+    iterations_max, iterations_sum, _, reached_step = count
+    if reached != reached and gap < 0:
+        reached, reached_step = now, n
         if capacity != CONTINUE:
-            acc[STOPPED] = 1.0
+            stopped = 1.0
+    return ((_fmax(theta2_max, abs(theta2)), _fmax(rise_max, rise), _fmax(i_a, distance[0] - radius[0]),
+             _fmax(i_b, distance[1] - radius[0]), _fmax(i_c, distance[2] - radius[1]),
+             _fmax(i_d, distance[3] - radius[1]), _fmin(clearance, gap), theta2, rise, stick_turn, rise_stick,
+             failure, reached, stopped),
+            (max(iterations_max, its), iterations_sum + its, n, reached_step))
 
 
 @jit
 def summarise_stick(acc, q_stick, theta2_previous, dims):
-    """The stick-slip entries: rotation within the sticking phase and RB3's rise at its end."""
+    """``acc`` with the stick-slip entries folded in: the rotation within the sticking phase and RB3's
+    rise at its end."""
     if acc[STOPPED] == 1.0:
-        return
-    acc[STICK_TURN_MAX] = _fmax(acc[STICK_TURN_MAX], abs(q_stick[5] * DEGREES - theta2_previous))
-    acc[RISE_STICK_MAX] = _fmax(acc[RISE_STICK_MAX], q_stick[7] - dims[REST])
+        return acc
+    return (acc[0], acc[1], acc[2], acc[3], acc[4], acc[5], acc[6], acc[7], acc[8],
+            _fmax(acc[STICK_TURN_MAX], abs(q_stick[5] * DEGREES - theta2_previous)),
+            _fmax(acc[RISE_STICK_MAX], q_stick[7] - dims[REST]), acc[11], acc[12], acc[13])
 
 
 @jit
@@ -486,19 +486,23 @@ def configuration(q0):
 
 @jit
 def case_summaries(k, acc_all, count_all):
-    """Case k's summary accumulators, copies that ``keep_summaries`` writes back, and whether the run
-    keeps summaries: (acc, count, summarise)."""
+    """Case k's summaries as the tuples ``summarise_step`` folds, and whether the run keeps summaries:
+    (acc, count, summarise)."""
     if acc_all.shape[0] > 0:
-        return acc_all[k].copy(), count_all[k].copy(), True
-    return np.empty(0), np.empty(0, np.int64), False
+        a, c = acc_all[k], count_all[k]
+        return ((a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11], a[12], a[13]),
+                (c[0], c[1], c[2], c[3]), True)
+    return NAN_ACC, (0, 0, 0, -1), False
 
 
 @jit
 def keep_summaries(k, acc_all, count_all, acc, count):
-    """Write case k's accumulators back (nothing where the run keeps no summaries)."""
-    if acc.shape[0] > 0:
-        acc_all[k] = acc
-        count_all[k] = count
+    """Write case k's summaries back (nothing where the run keeps no summaries)."""
+    if acc_all.shape[0] > 0:
+        for i in range(N_ACC):
+            acc_all[k, i] = acc[i]
+        for i in range(N_COUNT):
+            count_all[k, i] = count[i]
 
 
 # --- Python entry points -------------------------------------------------------------------

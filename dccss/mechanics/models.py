@@ -106,7 +106,7 @@ def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out)
             hlocal[0, k, i], hpoint[0, k, i], hnormal[0, k, i] = u[i], points[i], normals[i]
         hits[0, k], hres[0, k] = 0, 0.0
     if summarise:
-        compiled.summarise_step(acc, count, 0, now[0], q, u, distance, radius, dims, 0, capacity)
+        acc, count = compiled.summarise_step(acc, count, 0, now[0], q, u, distance, radius, dims, 0, capacity)
     h0 = h1 = h2 = h3 = q  # the last four converged configurations, newest last
     history = 1
     done[k] = 1
@@ -134,7 +134,7 @@ def compliant_case(k, xg, q0, case, flags, history_out, summary_out, status_out)
             for i in range(4):
                 hlocal[n, k, i] = u[i]
         if summarise:
-            compiled.summarise_step(acc, count, n, now[n], q, u, distance, radius, dims, its, capacity)
+            acc, count = compiled.summarise_step(acc, count, n, now[n], q, u, distance, radius, dims, its, capacity)
         done[k] = n + 1
         if stop_at_ring and compiled.beyond_ring(u, dims):
             break
@@ -161,7 +161,8 @@ def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out
     F = compiled.frames(q)
     u = compiled.plate_positions(F, pad)
     if summarise:
-        compiled.summarise_step(acc, count, 0, now[0], q, u, compiled.distances(u, centre), radius, dims, 0, capacity)
+        acc, count = compiled.summarise_step(acc, count, 0, now[0], q, u, compiled.distances(u, centre), radius,
+                                             dims, 0, capacity)
     q_previous = q_stick_previous = compiled.NAN9  # q(t_{n-2}) and q_stick(t_{n-1}), for the predictors
     started, down_previous = False, False
     done[k] = 1
@@ -203,9 +204,9 @@ def stick_slip_case(k, xg, q0, case, flags, history_out, summary_out, status_out
         if summarise or stop_at_ring:
             u = compiled.plate_positions(F, pad)
         if summarise:
-            compiled.summarise_stick(acc, q_stick, q_previous[5] * compiled.DEGREES, dims)
-            compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius, dims,
-                                    its_stick + its, capacity)
+            acc = compiled.summarise_stick(acc, q_stick, q_previous[5] * compiled.DEGREES, dims)
+            acc, count = compiled.summarise_step(acc, count, n, now[n], q, u, compiled.distances(u, centre), radius,
+                                                 dims, its_stick + its, capacity)
         done[k] = n + 1
         if stop_at_ring and compiled.beyond_ring(u, dims):
             break
