@@ -384,8 +384,8 @@ class Scene:
         for key, colour, label in (("capacity_exceeded_at_s", "tab:orange", "pad reaches a ring"),
                                    ("failure_time_s", "tab:red", "solver failure")):
             value = attrs.get(key)
-            if key == "failure_time_s" and not int(attrs.get("failed", 0)):
-                continue
+            if key == "failure_time_s" and (not int(attrs.get("failed", 0)) or attrs.get("failure_kind") == "capacity"):
+                continue  # a ring reached under capacity "error" is the ring's line
             if is_real(value) and lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
                 ax.axvline(value, color=colour, ls="--", lw=1.0)
                 ax.set_xlim(lo, max(hi, value))
@@ -521,7 +521,8 @@ class Scene:
         if "capacity_exceeded" in self.ds and int(self.ds["capacity_exceeded"].values[n]):
             flags.append("pad beyond a retaining ring")
         if int(self.ds.attrs.get("failed", 0)) and n == self.t.size - 1:
-            flags.append("last converged step: the solver failed on the next")
+            flags.append("the ring ends the run (capacity: error)" if self.ds.attrs.get("failure_kind") == "capacity"
+                         else "last converged step: the solver failed on the next")
         if self.stick and sticking is None:
             flags.append("no sticking phase at the first step")
         self.flag.set_text("; ".join(flags))

@@ -124,10 +124,15 @@ def _excitation(value, kind, base, geometry, key):
                             f"orients a one-component excitation: remove it, or give one file")
         return _oriented(record_from(value, base, key), azimuth, key)
     if kind == "sine":
-        amplitude = value["amplitude"]
-        amplitude = geometry.capacity1 if amplitude == "capacity" else number(amplitude, f"{key}.amplitude")
-        excitation = Sine(amplitude, number(value["omega"], f"{key}.omega"),
-                          number(value["duration"], f"{key}.duration", positive=True))
+        problems = Problems(value)
+        amplitude = geometry.capacity1 if value["amplitude"] == "capacity" else \
+            problems.check("amplitude", _amplitude, value["amplitude"], f"{key}.amplitude")
+        omega = problems.check("omega", number, value["omega"], f"{key}.omega")
+        duration = problems.check("duration", number, value["duration"], f"{key}.duration", positive=True)
+        scale = problems.check("scale", number, value["scale"], f"{key}.scale") if "scale" in value else None
+        problems.raise_if_any()
+        excitation = Sine(amplitude, omega, duration)
+        return _oriented(excitation if scale is None else Scaled(excitation, scale), azimuth, key)
     else:
         if not isinstance(value["file"], str):
             raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
@@ -141,6 +146,14 @@ def _excitation(value, kind, base, geometry, key):
     if "scale" in value:
         excitation = Scaled(excitation, number(value["scale"], f"{key}.scale"))
     return _oriented(excitation, azimuth, key)
+
+
+def _amplitude(value, key):
+    """A sine's amplitude (m), other than the word "capacity" (an error names both)."""
+    if isinstance(value, str):
+        raise CaseError(f"{key}: expected a number (m) or the word 'capacity' (the device's R1 sin(alpha1 - "
+                        f"alpha21)), got the string {value!r}")
+    return number(value, key)
 
 
 def _oriented(excitation, azimuth, key):
@@ -258,7 +271,7 @@ class Case:
     structure: Structure | None = None
 
     def run(self, progress=None):
-        """Simulate the case: an xarray.Dataset (``progress(n, N)`` is called after each step)."""
+        """Simulate the case: an xarray.Dataset (``progress(n, N)``: as ``simulate``'s)."""
         attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
@@ -292,11 +305,14 @@ def structure_from(value, key="structure") -> Structure | None:
         return None
     check_keys(value, key, tuple(STRUCTURE["required"]), STRUCTURE_OPTIONAL)
     value = {**STRUCTURE_OPTIONAL, **value}
+    problems = Problems(value)
+    friction, damping = (problems.check(k, number, value[k], f"{key}.{k}") for k in ("friction", "damping"))
+    friction_on = problems.check("friction_on", choice, value["friction_on"], f"{key}.friction_on", FRICTION_ON)
+    problems.raise_if_any()
     try:
-        return Structure(*(number(value[k], f"{key}.{k}") for k in ("friction", "damping")),
-                         friction_on=choice(value["friction_on"], f"{key}.friction_on", FRICTION_ON))
+        return Structure(friction, damping, friction_on=friction_on)
     except StructureError as err:
-        raise CaseError(str(err).replace("structure.", f"{key}.", 1)) from None
+        raise CaseError(*(m.replace("structure.", f"{key}.", 1) for m in err.messages)) from None
 
 
 def parameters_hash(mapping) -> str:

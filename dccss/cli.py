@@ -5,7 +5,8 @@
 Exit codes: 0 written (also a history marked failed with ``on_failure: mark``), 2 bad input,
 3 solver failure, 4 the pad reached a ring with ``capacity: error``. Warnings (an implausible
 record, a retaining ring reached, a history cut short or marked failed) are one line each on
-stderr; a progress line is shown while stepping when stderr is a terminal (not with --quiet).
+stderr; on a terminal (not with --quiet) a line says when the compiled kernels are compiled, once
+per machine and version of dccss (10-30 s).
 ``dccss run --help`` lists the case file's keys (from its schema), the exit codes and the
 ``DCCSS_BACKEND`` environment variable. ``dccss run`` and ``dccss check`` do not import the
 drawing code (matplotlib).
@@ -14,6 +15,8 @@ drawing code (matplotlib).
 from __future__ import annotations
 
 import argparse
+import logging
+import os
 import re
 import sys
 import textwrap
@@ -30,6 +33,7 @@ from .files import write_csv, write_netcdf
 from .mechanics import backend, registry
 from .mechanics.capacity import CapacityError
 from .mechanics.newton import ConvergenceError
+from .mechanics.scalar import log as kernels_log
 from .mechanics.structure import G
 from .schema import schema
 
@@ -37,7 +41,8 @@ from .schema import schema
 OUTPUTS = {".nc": "the netCDF dataset", ".csv": "a CSV table of the history (the dataset's attributes as # lines)"}
 #: the exit codes of ``dccss run`` (``dccss check``: 0 valid, 2 not)
 EXIT_CODES = {0: "written (also a history marked failed with on_failure: mark)",
-              2: "bad input: the case file, the output's suffix or DCCSS_BACKEND; nothing is run or written",
+              2: "bad input: the case file, the output path or DCCSS_BACKEND; nothing is run or written (or the output "
+                 "could not be written)",
               3: "solver failure (on_failure: error); nothing is written",
               4: "the pad reached a retaining ring (capacity: error); nothing is written"}
 #: what each value of DCCSS_BACKEND runs (``dccss.mechanics.backend``)
@@ -111,30 +116,22 @@ def warnings_of(ds) -> list[str]:
     if "stopped_at_s" in a:
         out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "
                    f"({ds.sizes['t'] - 1} steps written)")
-    if a.get("failed"):
+    if a.get("failed") and a.get("failure_kind") == "capacity":
+        out.append(f"capacity: error ended the history at the ring, t = {a['failure_time_s']:.6g} s, marked failed "
+                   f"(on_failure: mark): {a['failure_message']}")
+    elif a.get("failed"):
         out.append(f"the solver failed at t = {a['failure_time_s']:.6g} s; the history is written up to the "
                    f"last converged step (on_failure: mark): {a['failure_message']}")
     return out
 
 
-class _Progress:
-    """A one-line progress display on a terminal, updated at most 10 times a second."""
-
-    def __init__(self, stream):
-        self.stream, self.last, self.shown = stream, 0.0, False
-
-    def __call__(self, n, total):
-        now = time.monotonic()
-        if n < total and now - self.last < 0.1:
-            return
-        self.last, self.shown = now, True
-        self.stream.write(f"\rdccss: step {n}/{total} ({100 * n / max(total, 1):.0f} %)")
-        self.stream.flush()
-
-    def close(self):
-        if self.shown:
-            self.stream.write("\r\033[K")
-            self.stream.flush()
+def _show_compiling(stream):
+    """Say on ``stream`` when a kernel compiles (the first run of a version of dccss on a machine), which
+    takes 10-30 s where a run otherwise takes well under a second: a terminal would seem to hang."""
+    handler = logging.StreamHandler(stream)
+    handler.setFormatter(logging.Formatter("dccss: %(message)s"))
+    kernels_log.addHandler(handler)
+    kernels_log.setLevel(logging.INFO)
 
 
 def _failed(args, kind, err, code) -> int:
@@ -188,13 +185,24 @@ def run_epilog() -> str:
 
 
 def _output_error(output) -> str | None:
-    """Why ``dccss run`` cannot write ``output`` (its suffix is not one of OUTPUTS), or None."""
-    suffix = Path(output).suffix.lower()
-    if suffix in OUTPUTS:
-        return None
-    what = f"unknown output suffix {suffix!r}" if suffix else "no suffix"
-    allowed = ", ".join(f"{k} ({v.split(' (')[0]})" for k, v in OUTPUTS.items())
-    return f"-o {output}: {what}; allowed: {allowed}"
+    """Why ``dccss run`` cannot write ``output`` (its suffix is not one of OUTPUTS, it is a folder, or its
+    folder, made if missing, cannot be), or None: checked before the case runs."""
+    path = Path(output)
+    suffix = path.suffix.lower()
+    if suffix not in OUTPUTS:
+        what = f"unknown output suffix {suffix!r}" if suffix else "no suffix"
+        allowed = ", ".join(f"{k} ({v.split(' (')[0]})" for k, v in OUTPUTS.items())
+        return f"-o {output}: {what}; allowed: {allowed}"
+    if path.is_dir():
+        return f"-o {output}: is a folder; give a file name ending in {suffix}"
+    folder = path.parent.absolute()  # made if missing: its nearest existing parent must be a writable folder
+    while not folder.exists():
+        folder = folder.parent
+    if not folder.is_dir():
+        return f"-o {output}: {str(folder)!r} is a file, not a folder"
+    if not os.access(folder, os.W_OK):
+        return f"-o {output}: the folder {str(folder)!r} is not writable"
+    return None
 
 
 def file_kind(mapping) -> str:
@@ -303,19 +311,21 @@ def main(argv=None) -> int:
     except (ValueError, backend.BackendError) as err:
         print(f"dccss: error: {err}", file=sys.stderr)
         return 2
-    progress = _Progress(sys.stderr) if sys.stderr.isatty() and not args.quiet else None
+    if sys.stderr.isatty() and not args.quiet:
+        _show_compiling(sys.stderr)
     try:
-        ds = load_case(args.case).run(progress=progress)
+        ds = load_case(args.case).run()
     except CaseError as err:
         return _failed(args, "error", err, 2)
     except ConvergenceError as err:
         return _failed(args, "solver failure", err, 3)
     except CapacityError as err:
         return _failed(args, "capacity exceeded", err, 4)
-    finally:
-        if progress is not None:
-            progress.close()
-    (write_csv if Path(args.output).suffix.lower() == ".csv" else write_netcdf)(ds, args.output)
+    try:
+        (write_csv if Path(args.output).suffix.lower() == ".csv" else write_netcdf)(ds, args.output)
+    except OSError as err:
+        print(f"dccss: error: cannot write {args.output}: {err.strerror or err}", file=sys.stderr)
+        return 2
     for line in warnings_of(ds):
         print(f"dccss: warning: {line}", file=sys.stderr)
     if not args.quiet:

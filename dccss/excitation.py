@@ -430,6 +430,9 @@ class Scaled(_Wrapper):
     factor: float
     parameters = ()
 
+    def __post_init__(self):
+        object.__setattr__(self, "factor", _number("scale", self.factor))
+
     @property
     def components(self):
         return getattr(self.excitation, "components", 1)

@@ -47,7 +47,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         failure under every capacity policy.
     on_failure : str
         'error' (a ConvergenceError) or 'mark': the dataset holds the history up to the last converged
-        step, with the attributes ``failed`` = 1, ``failure_time_s`` (the step that failed) and
+        step, with the attributes ``failed`` = 1, ``failure_time_s`` (the step that failed),
+        ``failure_kind`` ("solver"; "capacity" for a ring reached under capacity 'error') and
         ``failure_message``.
     attrs : dict, optional
         Extra global attributes (e.g. a case id).
@@ -99,7 +100,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if run.failure is not None:
         at_ring = isinstance(run.failure, CapacityError)  # capacity "error", marked: the run ends at the ring
         ds.attrs.update(failure_time_s=run.reached["t"] if at_ring else float(times[run.steps]),
-                        failure_message=str(run.failure))
+                        failure_kind="capacity" if at_ring else "solver", failure_message=str(run.failure))
     if run.reached:
         ds.attrs.update(capacity_exceeded_at_s=run.reached["t"], capacity_exceeded_plate=run.reached["plate"],
                         capacity_exceeded_by_m=run.reached["by"],

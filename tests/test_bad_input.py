@@ -70,6 +70,13 @@ CLI_ROWS = [
             r"surface's capacity R1 sin\(alpha1 - alpha21\) = 19.08 cm\)"),
     ("solver failure", {"newton": {"tol": 1.0e-30, "max_iter": 2}}, {}, 3,
      "did not converge in sticking .*step 1, time 0.01 s"),
+    # every mistake of a sine and of a structure at once (before: the first of each)
+    ("sine and structure keys", {"excitation": {**CASE["excitation"], "omega": float("inf"), "duration": -1.0},
+                                 "structure": {"friction": 1.5, "damping": -0.1}}, {}, 2,
+     r"4 errors:\n  - excitation.duration: must be > 0, got -1.0\n  - excitation.omega: expected a finite number, "
+     r"got inf\n  - structure.friction: 1.5 is outside 0 < μ < 1\n  - structure.damping: -0.1 is outside 0 <= ζ < 1"),
+    ("amplitude word", {"excitation": {**CASE["excitation"], "amplitude": "Capacity"}}, {}, 2,
+     r"excitation.amplitude: expected a number \(m\) or the word 'capacity' .*got the string 'Capacity'"),
 ]
 
 
@@ -96,6 +103,35 @@ def test_case_file_errors(tmp_path, capsys, changes, files, status, message):
     assert not out.exists()
     leftovers = [p for p in tmp_path.rglob("*") if p not in before and p.is_file()]
     assert leftovers == []
+
+
+def test_an_output_path_that_cannot_be_written_is_refused_before_the_run(tmp_path, capsys):
+    """A folder, or a path under a file, is refused at once with exit code 2 (before: the case ran, then a
+    traceback and exit code 1); a missing folder is made."""
+    case = tmp_path / "case.yaml"
+    case.write_text(yaml.safe_dump(CASE))
+    (tmp_path / "folder.nc").mkdir()
+    assert main(["run", str(case), "-o", str(tmp_path / "folder.nc")]) == 2
+    assert "folder.nc: is a folder" in capsys.readouterr().err
+    assert main(["run", str(case), "-o", str(case / "out.nc")]) == 2
+    assert "case.yaml' is a file, not a folder" in capsys.readouterr().err
+    assert main(["run", str(case), "-o", str(tmp_path / "made" / "out.nc"), "-q"]) == 0
+
+
+def test_a_non_finite_ground_motion_is_refused():
+    """A NaN or infinite scale (the Python API) and a non-finite X_g are refused, naming the value (before: a
+    NaN history marked as not failed)."""
+    from dccss import Scaled, Sine
+    from dccss.mechanics import runs
+    from dccss.paper.prototypes import DFP1
+
+    for factor in (float("nan"), float("inf")):
+        with pytest.raises(ValueError, match=f"excitation.scale: expected a finite number, got {factor}"):
+            Scaled(Sine(0.1, 3.0, 1.0), factor)
+    with pytest.raises(ValueError, match=r"Xg must be finite: step 2 \(t = 0.02 s\) is nan"):
+        runs.history("compliant", DFP1, np.array([0.0, 0.01, np.nan]), times=np.array([0.0, 0.01, 0.02]))
+    with pytest.raises(ValueError, match="Xg must be finite: step 1 is inf"):
+        runs.summaries("stick_slip", DFP1, np.array([[0.0, 0.0], [np.inf, 0.0]]))
 
 
 def test_case_file_missing_and_not_yaml(tmp_path, capsys):

@@ -172,30 +172,71 @@ def test_cli_writes_a_marked_failure_and_says_so(tmp_path, capsys):
     assert main(["run", str(write(tmp_path, case)), "-o", str(out)]) == 0
     err = capsys.readouterr().err
     assert "dccss: warning: the solver failed at t = 0.15 s; the history is written up to the last converged" in err
-    assert xr.open_dataset(out).attrs["failed"] == 1
+    assert xr.open_dataset(out).attrs["failed"] == 1 and xr.open_dataset(out).attrs["failure_kind"] == "solver"
+    # a ring under capacity "error", marked: the ring ended it, not the solver (before: "the solver failed")
+    assert main(["run", str(write(tmp_path, {**case, "capacity": "error"})), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "solver failed" not in err and "dccss: warning: capacity: error ended the history at the ring" in err
+    assert xr.open_dataset(out).attrs["failure_kind"] == "capacity"
     assert main(["run", str(write(tmp_path, {**case, "on_failure": "error"})), "-o", str(tmp_path / "no.nc")]) == 3
     assert "Before the solver failed, the pad reached the retaining ring of RB1" in capsys.readouterr().err
     assert not (tmp_path / "no.nc").exists()
 
 
-def test_progress_line_only_on_a_terminal(tmp_path):
-    """A pipe gets no progress line; a terminal gets one (and --quiet silences it)."""
-    case = str(write(tmp_path, {**CASE, "excitation": {**CASE["excitation"], "duration": 2.0}, "dt": 0.001}))
-    piped = subprocess.run([sys.executable, "-m", "dccss", "run", case, "-o", str(tmp_path / "a.nc")],
-                           capture_output=True, text=True)
-    assert piped.returncode == 0 and "step" not in piped.stderr
-    for args, shown in (([], True), (["--quiet"], False)):
-        leader, follower = pty.openpty()
-        run = subprocess.run([sys.executable, "-m", "dccss", "run", case, "-o", str(tmp_path / "b.nc"), *args],
-                             stdout=subprocess.PIPE, stderr=follower, text=True)
-        os.close(follower)
-        try:
-            screen = os.read(leader, 65536).decode()
-        except OSError:  # EIO: nothing was written to the terminal
-            screen = ""
-        os.close(leader)
-        assert run.returncode == 0
-        assert ("dccss: step 2000/2000 (100 %)" in screen) == shown, screen
+def _on_a_terminal(args, env):
+    """Run ``python -m dccss`` with stderr on a pseudo-terminal: (return code, what the terminal showed)."""
+    leader, follower = pty.openpty()
+    run = subprocess.run([sys.executable, "-m", "dccss", *args], stdout=subprocess.PIPE, stderr=follower, text=True,
+                         env=env)
+    os.close(follower)
+    try:
+        screen = os.read(leader, 65536).decode()
+    except OSError:  # EIO: nothing was written to the terminal
+        screen = ""
+    os.close(leader)
+    return run.returncode, screen
+
+
+@pytest.mark.slow
+def test_a_terminal_is_told_when_the_kernels_compile(tmp_path):
+    """The first compiled run of a version on a machine compiles for 10-30 s: a terminal is told so (a
+    run with --quiet, or into a pipe, is not); a second run loads the kernels and says nothing. Before,
+    the terminal showed nothing while compiling and a "step N/N" line, erased at once, after it."""
+    case = str(write(tmp_path, {**CASE, "model": "compliant", "dt": 0.001,
+                                "excitation": {**CASE["excitation"], "duration": 30.0}}))
+    out = str(tmp_path / "out.nc")
+    env = {**os.environ, "DCCSS_BACKEND": "numba", "NUMBA_CACHE_DIR": str(tmp_path / "quiet")}
+    code, screen = _on_a_terminal(["run", case, "-o", out, "--quiet"], env)
+    assert code == 0 and "compiling" not in screen, screen
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "shown")
+    code, screen = _on_a_terminal(["run", case, "-o", out], env)
+    assert code == 0 and "dccss: compiling compliant_batch: once for this machine and version" in screen, screen
+    code, screen = _on_a_terminal(["run", case, "-o", out], env)
+    assert code == 0 and "compiling" not in screen and "dccss: wrote" not in screen, screen  # wrote: on stdout
+    piped = subprocess.run([sys.executable, "-m", "dccss", "run", case, "-o", out], capture_output=True, text=True,
+                           env={**env, "NUMBA_CACHE_DIR": str(tmp_path / "piped")})
+    assert piped.returncode == 0 and "compiling" not in piped.stderr, piped.stderr
+
+
+def test_kernel_says_when_it_compiles(tmp_path, monkeypatch, caplog):
+    """``scalar.kernel`` logs "compiling" where the cache holds no index of the function, not where it does."""
+    numba = pytest.importorskip("numba")
+    from dccss.mechanics import scalar
+
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(scalar, "_KERNELS", {})
+    with caplog.at_level("INFO", logger="dccss.kernels"):
+        assert scalar.kernel(_twice)(2.0) == 4.0
+    assert [r.getMessage().split(":")[0] for r in caplog.records] == ["compiling _twice"]
+    caplog.clear()
+    monkeypatch.setattr(scalar, "_KERNELS", {})
+    with caplog.at_level("INFO", logger="dccss.kernels"):
+        assert scalar.kernel(_twice)(3.0) == 6.0
+    assert not caplog.records
+
+
+def _twice(x):
+    return 2.0 * x
 
 
 @pytest.mark.parametrize("policy", ["continue", "stop"])

@@ -41,7 +41,7 @@ def test_a_record_axis_names_each_record_and_processes_it_once(suite):
     assert list(study.axes) == ["record", "scale"] and list(study.axes["record"]) == list(NAMES)
     assert study.grid.n_chunks == 3 and all(study.grid.record_of(study.grid.chunk(k)) == NAMES[k] for k in range(3))
     ds = _combined(study)
-    assert list(ds["record"].values) == list(NAMES) and ds.sizes["statistic"] == 4
+    assert list(ds["record"].values) == list(NAMES) and ds.sizes["statistic"] == 5
     # each record's cases are those of a study of that record alone
     for name in NAMES:
         alone = Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "file": f"records/{name}.AT2"},
@@ -65,9 +65,13 @@ def test_the_suite_statistics_equal_numpys_on_the_records_values(suite):
                 assert float(stats.sel(statistic="mean")) == pytest.approx(np.mean(values), rel=1e-14)
                 assert float(stats.sel(statistic="median")) == pytest.approx(np.median(values), rel=1e-14)
                 assert float(stats.sel(statistic="max")) == np.max(values)
+                assert float(stats.sel(statistic="min")) == np.min(values)
                 logs = np.log(values)
                 assert float(stats.sel(statistic="p84_lognormal")) == pytest.approx(
                     np.exp(logs.mean() + logs.std(ddof=1)), rel=1e-13)
+    # a minimum's design value is its smallest: the record nearest its ring
+    clearance = ds["clearance_min"].sel(model="compliant", scale=2.5).values
+    assert float(ds["clearance_min_suite"].sel(model="compliant", scale=2.5, statistic="min")) == np.min(clearance)
     counted = ds["records_capacity_exceeded"].sel(model="compliant", scale=2.5)
     assert int(counted) == int(ds["capacity_exceeded"].sel(model="compliant", scale=2.5).sum())
     assert float(ds["records_capacity_exceeded_fraction"].sel(model="compliant", scale=2.5)) == int(counted) / 3
@@ -93,6 +97,24 @@ def test_failed_records_are_counted_and_left_out_of_the_statistics(suite):
     assert int(ds["records_counted"].sel(model="stick_slip", scale=9.0)) == (~failed).sum()
     if kept.size:
         assert float(stats.sel(statistic="mean")) == pytest.approx(kept.mean(), rel=1e-14)
+
+
+def test_the_structures_statistics_keep_the_records_whose_pad_fails(suite):
+    """The structure's stroke does not depend on the pad: a record whose pad run fails keeps its stroke in
+    the suite's statistics (before, it was NaN and left out: the records of largest stroke were dropped
+    from the design values)."""
+    study = Study.from_config({**CONFIG, "structure": {"friction": 0.01}, "capacity": "error",
+                               "sweep": {"record": ["records/*.AT2"], "scale": [1.0, 6.0]}}, suite)
+    ds = _combined(study)
+    sel = {"model": "stick_slip", "scale": 6.0}
+    failed = ds["failed"].sel(sel).values.astype(bool)
+    assert failed.any() and not failed.all()
+    stroke = ds["stroke_max_abs"].sel(sel).values
+    assert np.isfinite(stroke).all() and stroke[failed].max() > stroke[~failed].max()
+    stats = ds["stroke_max_abs_suite"].sel(sel)
+    assert float(stats.sel(statistic="max")) == stroke.max()
+    assert float(stats.sel(statistic="mean")) == pytest.approx(stroke.mean(), rel=1e-14)
+    assert int(ds["records_counted"].sel(sel)) == (~failed).sum()  # the pad's
 
 
 @pytest.mark.parametrize("sweep, message", [
@@ -208,7 +230,7 @@ def test_a_suite_scaled_to_a_spectrum_has_the_target_at_its_period(suite):
         sa = spectra.spectral_acceleration(excitation, 2.0, 0.05)
         assert abs(sa / G / 0.25 - 1) < 1e-6, name
     ds = _combined(study)
-    assert ds["stroke_max_abs_suite"].sizes == {"statistic": 4, "model": 2, "friction": 2}
+    assert ds["stroke_max_abs_suite"].sizes == {"statistic": 5, "model": 2, "friction": 2}
     with pytest.raises(StudyError, match="sweep.scale: the records are scaled to a spectral acceleration"):
         Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": target}}, suite)
 

@@ -93,6 +93,15 @@ def check_start(theta2_0):
         raise ValueError(f"theta2_0 must be a finite angle with |theta2_0| < pi/2 rad (90 degrees), got {value!r} rad")
 
 
+def check_motion(Xg, times=None):
+    """A ValueError names the first sample of X_g (m) that is not finite: no run starts on it."""
+    bad = ~np.isfinite(Xg)
+    if bad.any():
+        n = int(np.argwhere(bad)[0][0])
+        when = f" (t = {float(times[n]):.6g} s)" if times is not None else ""
+        raise ValueError(f"Xg must be finite: step {n}{when} is {float(np.asarray(Xg)[bad].flat[0])!r}")
+
+
 def motion_of(Xg) -> str:
     """"planar" for one case's X_g of shape (T,), "spatial" for (T, 2)."""
     if np.ndim(Xg) == 1:
@@ -130,6 +139,7 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
                          f"{normals!r} (unsigned normals reproduce the planar paper's computation)")
     if normals not in NORMALS:
         raise ValueError(f"normals must be one of {NORMALS}, got {normals!r}")
+    check_motion(Xg, times)
     times = np.arange(len(Xg), dtype=float) if times is None else np.asarray(times, dtype=float)
     stop = capacity != "continue"
     failure = None
@@ -237,10 +247,10 @@ def summaries(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed
     raises the first failure, naming its case as the error's ``index``; "mark" marks it and goes on).
     ``progress(n, N)`` is called after the cases' steps."""
     check_start(theta2_0)
-    if np.ndim(Xg) == 3:
-        return _spatial_summaries(model, geometry, np.asarray(Xg, dtype=float), theta2_0, azimuth, options, capacity,
-                                  times, progress)
     Xg = np.asarray(Xg, dtype=float)
+    check_motion(Xg, times)
+    if Xg.ndim == 3:
+        return _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity, times, progress)
     now = np.arange(len(Xg), dtype=float) if times is None else np.asarray(times, dtype=float)
     limit = beyond_reach(geometry, Xg, theta2_0)
     if options.on_failure == "error" and capacity == "continue" and (limit >= 0).any():

@@ -17,10 +17,14 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import logging
 import math
 import os
 import shutil
 from pathlib import Path
+
+#: says when a kernel is compiled rather than loaded from the cache (INFO; ``dccss run`` shows it on a terminal)
+log = logging.getLogger("dccss.kernels")
 
 #: IEEE semantics for a division by zero (as numpy), no Python-style checks in the loops; kernels
 #: cached on disk
@@ -75,6 +79,9 @@ def kernel(function, parallel=False):
             _KERNELS[function] = numba.njit(parallel=parallel, **OPTIONS)(function)
         finally:
             numba.config.CACHE_DIR = saved
+        if folder is not None and not any(folder.rglob(f"*.{function.__qualname__}-*.nbi")):  # numba's index
+            log.info("compiling %s: once for this machine and version of dccss (10-30 s; cached in %s)",
+                     function.__qualname__, folder)
     return _KERNELS[function]
 
 

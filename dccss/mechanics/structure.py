@@ -59,7 +59,11 @@ RTOL, ATOL = 1e-12, 1e-14
 
 
 class StructureError(ValueError):
-    """A structure's parameters are out of range; the message names the key."""
+    """A structure's parameters are out of range; each message names its key (``messages``)."""
+
+    def __init__(self, *messages):
+        self.messages = list(messages)
+        super().__init__("; ".join(messages))
 
 
 #: what a structure's ``friction`` is the coefficient of: the device (μ, the force at zero stroke is
@@ -79,17 +83,21 @@ class Structure:
     friction_on: str = "device"
 
     def __post_init__(self):
+        problems = []
         for key, value, low_ok in (("friction", self.friction, False), ("damping", self.damping, True)):
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-                raise StructureError(f"structure.{key}: expected a number, got {type(value).__name__} {value!r}")
+                problems.append(f"structure.{key}: expected a number, got {type(value).__name__} {value!r}")
+                continue
             value = float(value)
             inside = (value >= 0.0 if low_ok else value > 0.0) and value < 1.0
             if not (math.isfinite(value) and inside):
                 allowed = "0 <= ζ < 1" if low_ok else "0 < μ < 1"
-                raise StructureError(f"structure.{key}: {value!r} is outside {allowed}")
+                problems.append(f"structure.{key}: {value!r} is outside {allowed}")
             object.__setattr__(self, key, value)
         if self.friction_on not in FRICTION_ON:
-            raise StructureError(f"structure.friction_on: must be one of {list(FRICTION_ON)}, got {self.friction_on!r}")
+            problems.append(f"structure.friction_on: must be one of {list(FRICTION_ON)}, got {self.friction_on!r}")
+        if problems:
+            raise StructureError(*problems)
 
     def device_friction(self, geometry) -> float:
         """The device's friction coefficient μ on ``geometry`` (its L, R1, R3).
@@ -168,7 +176,8 @@ class Response(NamedTuple):
 
 #: a structure's summaries of one history: name -> (units, long_name)
 SUMMARIES = {
-    "stroke_max_abs": ("m", "largest |stroke| (the superstructure's displacement relative to the ground)"),
+    "stroke_max_abs": ("m", "largest |stroke| (the superstructure's displacement relative to the ground) over the "
+                            "whole record, whatever became of the pad"),
     "stroke_end": ("m", "residual stroke u(t_end) (its size |u| for two components)"),
     "shear_ratio_max_abs": ("1", "largest |F/W| of the device"),
 }

@@ -36,10 +36,25 @@ def study_attrs(study, model=None, record=None) -> dict:
                        sweep_axes=" ".join(study.axes),
                        **({"dt_s": study.dt} if study.dt is not None and "dt" not in study.axes else {}),
                        **{f"prototype_{k}": float(v) for k, v in study.prototype.items()}, **ground,
-                       **({} if study.structure is None else
-                          {f"structure_{k}": v for k, v in vars(study.structure).items()}))
+                       **structure_attrs(study))
     if model:
         out["model"] = model
+    return out
+
+
+def structure_attrs(study) -> dict:
+    """A study's structure, as a history's attributes name it: ``structure_friction_on``, the file's
+    ``structure_friction_given`` and ``structure_damping`` where they are not sweep axes, and the
+    device's ``structure_friction`` where it is that value (``friction_on`` "device")."""
+    if study.structure is None:
+        return {}
+    s, out = study.structure, {"structure_friction_on": study.structure.friction_on}
+    if "friction" not in study.axes:
+        out["structure_friction_given"] = s.friction
+        if s.friction_on == "device":
+            out["structure_friction"] = s.friction
+    if "damping" not in study.axes:
+        out["structure_damping"] = s.damping
     return out
 
 
@@ -145,19 +160,21 @@ def _inner(excitation):
 
 #: the suite statistics over the ``record`` dimension (EN 1998-1 4.3.3.4.3 and ASCE 7-22 17.3.4: the
 #: mean of the records' peaks; the 84th percentile of a lognormal fit, as fragility work uses)
-STATISTICS = ("mean", "median", "p84_lognormal", "max")
+STATISTICS = ("mean", "median", "p84_lognormal", "max", "min")
 
 
 def statistics(ds) -> xr.Dataset:
     """Every summary but the event times (``capacity_time``, ``failure_time``) reduced over ``record``
     (each record's value is its own peak or end value):
     ``<name>_suite`` with a ``statistic`` coordinate (STATISTICS: the mean, the median, the 84th
-    percentile of a lognormal fit exp(mean ln x + std ln x) (NaN where a value is not > 0) and the
-    largest), over the records that did not fail; an end value (``*_end``: a residual rotation, rise or
+    percentile of a lognormal fit exp(mean ln x + std ln x) (NaN where a value is not > 0), the
+    largest and the smallest: the design value of a minimum, ``clearance_min``, is its smallest), the
+    pad's over the records that did not fail, the structure's (``structure.SUMMARIES``: its response
+    does not depend on the pad) over all records; an end value (``*_end``: a residual rotation, rise or
     stroke, signed for one component) by its size |x|, as a design value is one (signed, records
     pushed to either side would cancel in the mean); ``records_capacity_exceeded`` and
     ``records_failed``, the number of records whose pad reaches a ring or whose run fails, and
-    ``records_counted``, the number the statistics are over."""
+    ``records_counted``, the number the pad's statistics are over."""
     out = {}
     failed = ds["failed"].astype(bool)
     ok = ~failed
@@ -166,21 +183,22 @@ def statistics(ds) -> xr.Dataset:
         flag = name in ("failed", "capacity_exceeded") or name.startswith("record_") or name.endswith("_time")
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
+        counted = xr.ones_like(ok) if name in STRUCTURE_SUMMARIES else ok
         size = name.endswith("_end")
-        values = abs(var.where(ok)) if size else var.where(ok)
+        values = abs(var.where(counted)) if size else var.where(counted)
         logs = np.log(values.where(values > 0))
         lognormal = np.exp(logs.mean("record") + logs.std("record", ddof=1))
-        lognormal = lognormal.where((values > 0).sum("record") == ok.sum("record"))
-        stack = [values.mean("record"), values.median("record"), lognormal, values.max("record")]
+        lognormal = lognormal.where((values > 0).sum("record") == counted.sum("record"))
+        stack = [values.mean("record"), values.median("record"), lognormal, values.max("record"), values.min("record")]
         out[f"{name}_suite"] = xr.concat(stack, dim="statistic").assign_attrs(
             units=var.attrs.get("units", "1"),
             long_name=f"{var.attrs.get('long_name', name)}{', its size' if size else ''}: suite statistic")
     out["records_capacity_exceeded"] = ds["capacity_exceeded"].astype(bool).sum("record").astype(np.int32).assign_attrs(
         units="1", long_name="number of records whose pad reaches a retaining ring")
     out["records_failed"] = failed.sum("record").astype(np.int32).assign_attrs(
-        units="1", long_name="number of records whose run fails (left out of the suite statistics)")
+        units="1", long_name="number of records whose run fails (left out of the pad's suite statistics)")
     out["records_counted"] = ok.sum("record").astype(np.int32).assign_attrs(
-        units="1", long_name="number of records the suite statistics are over")
+        units="1", long_name="number of records the suite statistics of the pad are over (the structure's: all)")
     n = ds.sizes["record"]
     for what in ("capacity_exceeded", "failed"):
         out[f"records_{what}_fraction"] = (out[f"records_{what}"] / n).assign_attrs(

@@ -122,7 +122,10 @@ def _axis_unit(ds, name):
 
 def _axis_label(ds, name):
     unit = _axis_unit(ds, name)[1]
-    return f"{_symbol(name)} ({unit})" if unit else _symbol(name)
+    symbol = _symbol(name)
+    if name == "friction" and ds.attrs.get("structure_friction_on") == "surfaces":
+        symbol = "friction $μ_s$ of each surface"
+    return f"{symbol} ({unit})" if unit else symbol
 
 
 def _value_text(ds, name, value):
@@ -353,7 +356,9 @@ def _notes(ds, model):
     stop = _stop_time(ds)
     if stop is not None:
         parts.append(f"history cut at {stop:.4g} s (capacity policy 'stop')")
-    if _failed(ds):
+    if _failed(ds) and ds.attrs.get("failure_kind") == "capacity":
+        parts.append("history ended there, marked failed (capacity policy 'error')")
+    elif _failed(ds):
         time = float(ds.attrs.get("failure_time_s", ds["t"].values[-1]))
         message = _failure_reason(str(ds.attrs.get("failure_message", "")))
         parts.append(f"solver failed at {time:.4g} s" + (f": {message}" if message else ""))

@@ -17,19 +17,13 @@ from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
 
 
-def structure_summaries(responses, part, times, capacity) -> dict:
-    """The structure's summaries of each case (``structure.SUMMARIES``; {} without a structure) over the
-    steps its case's kinematic summaries are over: NaN for a failed case, up to the ring for one that
-    ``capacity`` "stop" ended there."""
+def structure_summaries(responses) -> dict:
+    """The structure's summaries of each case (``structure.SUMMARIES``; {} without a structure): its
+    response to the whole record, the demand on the device, whatever became of the pad (it does not
+    depend on it: a case whose pad reached a ring, stopped there or failed keeps them)."""
     out = {name: np.full(len(responses), np.nan) for name in STRUCTURE_SUMMARIES} if responses else {}
     for i, response in enumerate(responses):
-        if part["failed"][i]:
-            continue
-        end = len(times)
-        if capacity == "stop" and np.isfinite(part["capacity_time"][i]):
-            end = int(np.searchsorted(times, part["capacity_time"][i])) + 1
-        kept = response._replace(stroke=response.stroke[:end], shear_ratio=response.shear_ratio[:end])
-        for name, value in structure.summarize(kept).items():
+        for name, value in structure.summarize(response).items():
             out[name][i] = value
     return out
 
@@ -56,7 +50,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             index = getattr(err, "index", None)
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
-        own = structure_summaries(responses, part, times, study.capacity)
+        own = structure_summaries(responses)
         for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
     names = {**specs(), **STRUCTURE_SUMMARIES, **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
