@@ -92,7 +92,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                              normals=normals, tol=options.tol, attrs=attrs)
     if response is not None:
         ds = ds.assign(structure_variables(response, excitation.components, run.steps))
-        ds.attrs.update(structure.attrs(geometry))
+        ds.attrs.update(structure.attrs(geometry), structure_stroke_max_abs_m=response.peaks[0],
+                        structure_shear_ratio_max_abs=response.peaks[1])
         ds.attrs["imposed_motion"] = ("minus the stroke: RB1 relative to RB3 is -u, u the superstructure's "
                                       "displacement relative to the ground")
     ds.attrs["capacity_policy"] = capacity

@@ -44,21 +44,25 @@ def test_friction_and_damping_sweep_the_structure_of_each_case():
                 r = respond(sine.ground_acceleration(), study.grid.times(0.01), study.grid.pendulums([0])[0],
                             Structure(mu, zeta))
                 case = ds.sel(friction=mu, damping=zeta, amplitude=amplitude, model="stick_slip")
-                assert float(case["stroke_max_abs"]) == np.max(np.abs(r.stroke))
+                # the peaks over the ground's samples too, not only the steps
+                assert float(case["stroke_max_abs"]) == r.peaks[0] >= np.max(np.abs(r.stroke))
                 assert float(case["stroke_end"]) == r.stroke[-1, 0]
-                assert float(case["shear_ratio_max_abs"]) == np.max(np.abs(r.shear_ratio))
+                assert float(case["shear_ratio_max_abs"]) == r.peaks[1] >= np.max(np.abs(r.shear_ratio))
     # more friction, less stroke; the pad follows the stroke (θ² ≈ asin(u / L))
     s = ds.sel(model="compliant", damping=0.0, amplitude=0.08)
     assert float(s.sel(friction=0.02)["stroke_max_abs"]) > float(s.sel(friction=0.05)["stroke_max_abs"])
     L = float(study.grid.geometry([0]).L[0])
-    assert np.allclose(np.radians(ds.sel(model="compliant")["theta2_max_abs"].values),
-                       np.arcsin(ds.sel(model="compliant")["stroke_max_abs"].values / L), rtol=1e-5, atol=0)
+    # (θ² at the steps, the stroke's peak over the ground's samples too: between steps Δt apart the peak of a
+    # motion of frequency ω = 3 rad/s is at most 1 - cos(ω Δt / 2) ≈ (ω Δt)² / 8 above the steps' largest)
+    theta2 = np.radians(ds.sel(model="compliant")["theta2_max_abs"].values)
+    follows = np.arcsin(ds.sel(model="compliant")["stroke_max_abs"].values / L)
+    assert np.all(theta2 <= follows * (1 + 1e-5)) and np.all(theta2 >= follows * (1 - (3.0 * 0.01) ** 2 / 8 - 1e-5))
     # a history point carries its structure into its case, and equals the sweep
     case = history_case(study, 0, "stick_slip")
     assert case.structure == Structure(0.02, 0.1)
     history = case.run()
     assert float(ds.sel(model="stick_slip", friction=0.02, damping=0.1, amplitude=0.08)["stroke_max_abs"]) == \
-        np.max(np.abs(history["stroke"].values))
+        history.attrs["structure_stroke_max_abs_m"] >= np.max(np.abs(history["stroke"].values))
 
 
 def test_a_study_without_a_structure_key_gets_one_from_its_friction_axis():
@@ -134,11 +138,10 @@ def test_the_structures_summaries_are_its_response_to_the_whole_record(capacity)
     for i in range(2):
         history = history_case(study, i, "compliant").run()
         whole = study.grid.imposed(np.arange(i, i + 1), study.grid.times(0.01))[1][0]
-        stroke = np.abs(whole.stroke[:, 0])
-        assert part["stroke_max_abs"].values[i] == pytest.approx(stroke.max(), rel=1e-12)
-        assert part["stroke_end"].values[i] == pytest.approx(whole.stroke[-1, 0], rel=1e-12)
+        assert part["stroke_max_abs"].values[i] == whole.peaks[0]
+        assert part["stroke_end"].values[i] == whole.stroke[-1, 0]
         ended = np.abs(history["stroke"].values).max()
-        assert ended == pytest.approx(stroke.max(), rel=1e-12) if i == 0 else ended < 0.9 * stroke.max()
+        assert ended == pytest.approx(whole.peaks[0], rel=1e-3) if i == 0 else ended < 0.9 * whole.peaks[0]
 
 
 def test_a_study_names_its_structure_as_its_histories_do():

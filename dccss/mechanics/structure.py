@@ -165,13 +165,16 @@ class Ground(NamedTuple):
 
 class Response(NamedTuple):
     """The structure's response at the requested times: stroke u (m), its velocity (m/s), the
-    friction state z and the force ratio F/W, each (T, c); ``sticking`` (T,) whether u̇ = 0 there."""
+    friction state z and the force ratio F/W, each (T, c); ``sticking`` (T,) whether u̇ = 0 there;
+    ``peaks``: the largest |u| (m) and |F/W| over the record's samples and the requested times
+    between the first and the last of these (a coarse step would miss the peaks between its times)."""
 
     stroke: np.ndarray
     velocity: np.ndarray
     z: np.ndarray
     shear_ratio: np.ndarray
     sticking: np.ndarray
+    peaks: tuple = (math.nan, math.nan)
 
 
 #: a structure's summaries of one history: name -> (units, long_name)
@@ -184,11 +187,11 @@ SUMMARIES = {
 
 
 def summarize(response: Response) -> dict:
-    """The :data:`SUMMARIES` of a response: vector sizes for two components, u(t_end) signed for one."""
+    """The :data:`SUMMARIES` of a response: vector sizes for two components, u(t_end) signed for one; the
+    peaks over the record's samples too (``Response.peaks``)."""
     stroke = np.linalg.norm(response.stroke, axis=1)
     end = response.stroke[-1, 0] if response.stroke.shape[1] == 1 else stroke[-1]
-    return {"stroke_max_abs": float(np.max(stroke)), "stroke_end": float(end),
-            "shear_ratio_max_abs": float(np.max(np.linalg.norm(response.shear_ratio, axis=1)))}
+    return {"stroke_max_abs": response.peaks[0], "stroke_end": float(end), "shear_ratio_max_abs": response.peaks[1]}
 
 
 def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
@@ -208,8 +211,10 @@ def solve(ground: Ground, times, L, mu, zeta) -> Response:
         u, v, z = u[:, None], v[:, None], z[:, None]
     else:
         u, v, z, stick = _plane(refined, omega, zeta, mu * G)
+    span = slice(index[0], index[-1] + 1)
+    peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, u / L + mu * z))
     u, v, z, stick = u[index], v[index], z[index], stick[index]
-    return Response(u, v, z, u / L + mu * z, stick)
+    return Response(u, v, z, u / L + mu * z, stick, peaks)
 
 
 #: stick/slip phases in one sample interval beyond which the solver gives up (a chatter it cannot resolve)
