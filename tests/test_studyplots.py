@@ -409,3 +409,11 @@ def test_a_legend_group_too_long_for_the_figure_goes_on_more_lines():
     rows = studyplots._legend_rows([group, [ring]], 5.0)
     assert [h for r in rows for h in r] == group + [ring] and len(rows) == 3
     assert all(sum(0.6 + 0.065 * len(h.get_label()) for h in r) < 0.95 * 5.0 for r in rows)
+
+
+def test_a_suite_of_eleven_records_gets_eleven_markers():
+    """Design codes average 7 to 11 records; a map tells each record by its marker (six markers made the
+    seventh record the first's)."""
+    from dccss.studies.plots import GROUP_MARKERS
+
+    assert len(set(GROUP_MARKERS[:11])) == 11

@@ -37,6 +37,8 @@ CATEGORICAL = ("record", "prototype", "component")
 #: checks a study against as well
 KEYS = set(schema("study")["properties"])
 REQUIRED = tuple(schema("study")["required"])
+#: the defaults of the optional keys that have one
+DEFAULTS = {k: v["default"] for k, v in schema("study")["properties"].items() if "default" in v}
 #: the keys that only the plots and the histories read: the sweep's results do not depend on them
 NOT_SWEPT = ("marks", "histories", "animate")
 #: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log); with a
@@ -173,7 +175,8 @@ class Study:
         if known is not None and "prototype" in config:
             proto = problems.check("prototype", _device, config["prototype"], known)
             geometry = problems.check("prototype", geometry_from, proto) if proto is not None else None
-        symmetric = config.get("symmetric", False)
+        given = {**DEFAULTS, **config}  # the file's values and the schema's defaults of the others
+        symmetric = given["symmetric"]
         if not isinstance(symmetric, bool):
             problems.add("symmetric", f"symmetric: expected true or false, got {symmetric!r}")
         models = problems.check("models", _models, config["models"]) if "models" in config else None
@@ -184,20 +187,20 @@ class Study:
             found = problems.check("excitation", _excitations, config, axes, base, geometry)
             if found is not None:
                 excitation, records, axes = found
-        if excitation is not None and excitation.components == 2 and config.get("normals", "signed") != "signed":
+        if excitation is not None and excitation.components == 2 and given["normals"] != "signed":
             problems.add("normals", "normals: bidirectional ground motion runs the spatial models, which use signed "
-                                    f"normals only; got {config.get('normals')!r}")
+                                    f"normals only; got {given['normals']!r}")
         if axes is not None:
             dt = problems.check("dt", _steps, config, axes, excitation)
         else:
             dt = problems.check("dt", number, config["dt"], "dt", positive=True) if "dt" in config else None
         structure = problems.check("structure", _structure, config.get("structure"), axes) if axes is not None else None
         options = problems.check("newton", newton_from, config.get("newton"))
-        policy = problems.check("on_failure", choice, config.get("on_failure", "mark"), "on_failure", FAILURE_POLICIES)
-        theta2_0 = problems.check("theta2_0", number, config.get("theta2_0", 0.0), "theta2_0")
-        normals = problems.check("normals", choice, config.get("normals", "signed"), "normals", NORMALS)
-        chunk_size = problems.check("chunk_size", _chunk_size, config.get("chunk_size", "auto"), axes or {})
-        capacity = problems.check("capacity", choice, config.get("capacity", "continue"), "capacity",
+        policy = problems.check("on_failure", choice, given["on_failure"], "on_failure", FAILURE_POLICIES)
+        theta2_0 = problems.check("theta2_0", number, given["theta2_0"], "theta2_0")
+        normals = problems.check("normals", choice, given["normals"], "normals", NORMALS)
+        chunk_size = problems.check("chunk_size", _chunk_size, given["chunk_size"], axes or {})
+        capacity = problems.check("capacity", choice, given["capacity"], "capacity",
                                   CAPACITY_POLICIES)
         # the points below are on the axes a record axis completes: checked once the excitation has passed
         marks = problems.check("marks", _marks, config.get("marks", {}), axes) if excitation is not None else None

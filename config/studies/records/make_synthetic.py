@@ -20,7 +20,7 @@ before.
 After the default processing of ``dccss.records.Record`` (linear velocity baseline) the peak
 ground displacement is about 15 cm (PGV about 0.38 m/s), below the ~19-22 cm capacity of the Table 1 prototypes;
 for ``synthetic_y.AT2`` PGD is about 9.4 cm (PGV about 0.31 m/s), and the pair's peak horizontal
-ground displacement max |(x, y)| is about 15 cm (12 cm in the 0-12 s window of the ground-motion study).
+ground displacement max |(x, y)| is about 15 cm, reached at t = 2.1 s, within the 0-12 s window of the studies.
 
 To run a study on a real record instead, download it as a PEER ``.AT2`` file (or ``.VT2``/``.DT2``,
 or write a two-column text file whose header states the units, e.g. ``time (s), acceleration (g)``)
