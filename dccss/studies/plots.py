@@ -38,7 +38,7 @@ from .spec import layout
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
 OTHER_LINES = (dict(color="tab:green", ls="-.", lw=1.8, zorder=4), dict(color="tab:purple", ls=":", lw=1.8, zorder=5))
 #: one per group of a map (a record of a suite: codes ask for 7 to 11); the first six as before
-GROUP_MARKERS = ("o", "s", "^", "v", "P", "*", "X", "D", "<", ">", "h", "p")
+GROUP_MARKERS = ("o", "s", "^", "v", "P", "*", "D", "<", ">", "h", "p", "d")  # no "X": a failure's mark
 CAPACITY_COLOUR, FAILED_COLOUR = "crimson", "0.25"
 EVENT_LINE = {"capacity": dict(ls=(0, (1, 1.5)), lw=1.6), "failure": dict(ls=(0, (6, 2, 1, 2)), lw=1.6)}
 LOG_AXES = ("dt",)
