@@ -215,7 +215,14 @@ def record_from(value, base: Path, key="excitation"):
                                              baseline=baseline, units=units, rotation=rotation)
             return Record.from_file(base / file, scale=factor, window=cut, baseline=baseline, units=units)
         except ValueError as err:
-            raise CaseError(f"{key}.file: {err}") from None
+            where = "file"
+            if cut is not None:  # the file reads without the window: the window is wrong
+                try:
+                    read(factor, None)
+                    where = "window"
+                except CaseError:
+                    pass
+            raise CaseError(f"{key}.{where}: {err}") from None
 
     if spectral is None:
         return read(scale)

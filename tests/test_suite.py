@@ -131,6 +131,17 @@ def test_bad_record_axes_are_refused(suite, sweep, message):
         Study.from_config({**CONFIG, "excitation": {"kind": "record", "file": "records/RSN11_NORTH.AT2"}}, suite)
 
 
+def test_an_excitation_error_of_a_suite_names_the_key_and_the_record(suite):
+    """An error in the study's excitation keys names the key the file has and the record (before: a
+    window beyond a record was reported as ``sweep.record[NAME].window``); one in a file names sweep.record."""
+    window = {**CONFIG, "excitation": {**CONFIG["excitation"], "window": [0.0, 8.5]}}
+    with pytest.raises(StudyError, match=r"^excitation\.window: .* \(record 'RSN13_EAST'\)$"):
+        Study.from_config(window, suite)
+    (suite / "records" / "RSN14_WEST.AT2").write_text("not a record\n")
+    with pytest.raises(StudyError, match=r"^sweep\.record: .*RSN14_WEST\.AT2.* \(record 'RSN14_WEST'\)$"):
+        Study.from_config(CONFIG, suite)
+
+
 def test_a_pair_is_named_by_its_station(suite):
     from dccss.studies.spec import record_entries
 

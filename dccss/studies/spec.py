@@ -263,12 +263,22 @@ def _excitations(config, axes, base, geometry):
                          "kind and processing (scale, window, baseline, units) without a file")
     entries = record_entries(config["sweep"]["record"], base)
     axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
-    records = {name: _swept_excitation(excitation_from({**spec, "file": entry}, base, geometry,
-                                                       f"sweep.record[{name}]"), axes, spec)
-               for name, entry in entries.items()}
+    records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
     if len({e.components for e in records.values()}) > 1:
         raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
     return next(iter(records.values())), records, axes
+
+
+def _record_excitation(name, entry, spec, axes, base, geometry):
+    """The excitation of a suite's record ``name`` (its file(s) ``entry`` with the study's ``excitation``
+    keys); an error names the key the file has (``sweep.record`` for the file, ``excitation.<key>`` for
+    the others) and the record."""
+    try:
+        excitation = excitation_from({**spec, "file": entry}, base, geometry)
+    except CaseError as err:
+        raise StudyError(*(re.sub(r"^excitation\.file\b", "sweep.record", m) + f" (record {name!r})"
+                           for m in err.messages)) from None
+    return _swept_excitation(excitation, axes, spec)
 
 
 def _meta(meta):
