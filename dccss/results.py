@@ -52,9 +52,10 @@ def coordinates(q, dims, suffix="", when=""):
 
 
 def time_coordinate(times):
-    """The time coordinate ``t``: seconds elapsed since the start of the ground motion (see TIME)."""
+    """The time coordinate ``t``: seconds since the start of the ground motion (see TIME); a record cut by a
+    window keeps its own times (t starts at the window's start)."""
     return xr.Variable((TIME,), np.asarray(times, dtype=float), {
-        "units": TIME_UNITS, "long_name": "time since the start of the imposed ground motion"})
+        "units": TIME_UNITS, "long_name": "time since the start of the ground motion (a record's own time)"})
 
 
 def load(path) -> xr.Dataset:
