@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -62,7 +63,7 @@ from .checks import CaseError, Problems, check_keys, choice, number
 from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
 from .mechanics import registry
 from .mechanics.capacity import CAPACITY_POLICIES
-from .mechanics.geometry import PARAMETERS, Geometry
+from .mechanics.geometry import ANGLES, LENGTHS, PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .mechanics.structure import FRICTION_ON, Structure, StructureError
@@ -93,9 +94,32 @@ def geometry_from(value, key="prototype") -> Geometry:
     params = {k: problems.check(k, number, value[k], f"{key}.{k}") for k in PARAMETERS}
     problems.raise_if_any()
     try:
-        return Geometry.from_degrees(**params)
+        geometry = Geometry.from_degrees(**params)
     except ValueError as err:
         raise CaseError(f"{key}: {err}") from None
+    for message in _implausible(params, key):
+        warnings.warn(message, DeviceWarning, stacklevel=2)
+    return geometry
+
+
+class DeviceWarning(UserWarning):
+    """A device that is valid but whose numbers look like other units (mm for m, radians for degrees)."""
+
+
+#: a length beyond which a device's parameter more likely is in mm or cm than in m
+LONGEST = 50.0
+
+
+def _implausible(params, key) -> list[str]:
+    """Why a valid device's numbers look like other units: a length over LONGEST m, or every angle under 1
+    degree (radians given for degrees)."""
+    long = [f"{k} = {params[k]:g}" for k in LENGTHS if params[k] > LONGEST]
+    out = [f"{key}: {', '.join(long)} m: lengths are in metres (a real device's radii are a few metres, its pad a "
+           f"few tenths); are they in mm or cm?"] if long else []
+    if all(abs(params[k]) < 1.0 for k in ANGLES):
+        out.append(f"{key}: every angle is under 1 degree ({', '.join(f'{k} = {params[k]:g}' for k in ANGLES)}): "
+                   f"angles are in degrees; are they in radians?")
+    return out
 
 
 def excitation_from(value, base: Path, geometry: Geometry, key="excitation"):

@@ -196,3 +196,22 @@ def test_workflow_config_errors(tmp_path, mutate, message):
     assert run.returncode != 0
     assert message in run.stdout + run.stderr, (run.stdout + run.stderr)[-2000:]
     assert not (work / "results").exists() and not (work / "figures").exists()
+
+
+def test_a_device_in_other_units_is_warned_about(tmp_path):
+    """A device given in mm, or with its angles in radians, is valid but warned about, naming the keys (it ran
+    silently)."""
+    from dccss.case import DeviceWarning, geometry_from
+
+    mm = {**TABLE1["DFP1"], "R1": 2000.0, "R3": 2000.0, "h2": 150.0}
+    with pytest.warns(DeviceWarning, match=r"prototype: R1 = 2000, R3 = 2000, h2 = 150 m: lengths are in metres"):
+        geometry_from(mm)
+    radians = {**TABLE1["DFP1"], **{k: np.radians(TABLE1["DFP1"][k]) for k in ("alpha1", "alpha3", "alpha21",
+                                                                                  "alpha23")}}
+    with pytest.warns(DeviceWarning, match="every angle is under 1 degree .* are they in radians"):
+        geometry_from(radians)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        geometry_from("DFP1")  # Table 1 and the shipped studies' devices raise no warning
