@@ -126,6 +126,8 @@ def warnings_of(ds) -> list[str]:
 def _show_compiling(stream):
     """Say on ``stream`` when a kernel compiles (the first run of a version of dccss on a machine), which
     takes 10-30 s where a run otherwise takes well under a second: a terminal would seem to hang."""
+    if any(getattr(h, "stream", None) is stream for h in kernels_log.handlers):
+        return  # main() called again in one process
     handler = logging.StreamHandler(stream)
     handler.setFormatter(logging.Formatter("dccss: %(message)s"))
     kernels_log.addHandler(handler)

@@ -27,7 +27,7 @@ COMMON = {
     "capacity_time": ("s", "time at which the pad first reaches a retaining ring (NaN if it does not)"),
     "newton_iterations_max": ("1", "most Newton-Raphson iterations in a step"),
     "newton_iterations_mean": ("1", "mean Newton-Raphson iterations per step"),
-    "failed": ("1", "the solver failed for this case (its summaries are NaN)"),
+    "failed": ("1", "the solver failed for this case (its pad's summaries are NaN)"),
     "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
 }
 #: the rotation summaries under bidirectional motion, where |theta2| is the pad axis's tilt (``spatial.summary``)

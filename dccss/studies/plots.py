@@ -592,11 +592,13 @@ def _line_marks(ax, ds, name, marks):
 
 
 def _flag_marks(ax, x, values, capacity, failed, colour, failures):
-    """Red boxes around the points beyond capacity; the points where the solver failed are added to
-    ``failures`` (x, colour), drawn by ``_failure_marks``."""
+    """Red boxes around the points beyond capacity; the points where the solver failed and that have no
+    value (a structure's summaries have one: they do not depend on the pad) are added to ``failures``
+    (x, colour), drawn by ``_failure_marks``."""
     if capacity.any():
         ax.plot(x[capacity], values[capacity], ls="none", marker="s", ms=14, mfc="none", mec=CAPACITY_COLOUR,
                 mew=1.4, zorder=6, gid="capacity_exceeded")
+    failed = failed & ~np.isfinite(values)
     if failed.any():
         failures.append((x[failed], colour))
 
