@@ -27,16 +27,20 @@ CORNER_STYLE = {  # A/D and B/C superimpose: solid wide under dashed narrow
 I_LABEL = {"A": r"$I_A^1$", "B": r"$I_B^1$", "C": r"$I_C^3$", "D": r"$I_D^3$"}
 PLATE_COLOUR, PAD_COLOUR = "0.82", "#f2b35e"
 CAPTION_INCHES = 0.35  # strip kept free at the bottom for the caption line
+LINE_INCHES = 0.17  # and for each further line of it
 DPI = 150
 PNG_METADATA = {"Software": None}
 PDF_METADATA = {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": None}
 
 
-def new_figure(size, nrows=1, ncols=1, **kwargs):
-    """A constrained-layout figure of fixed size with a bottom strip for the caption."""
+def new_figure(size, nrows=1, ncols=1, caption_lines=1, **kwargs):
+    """A constrained-layout figure of fixed size with a bottom strip for the caption (of ``caption_lines``
+    lines: the figure grows by the lines beyond the first)."""
+    strip = CAPTION_INCHES + LINE_INCHES * (caption_lines - 1)
+    size = (size[0], size[1] + strip - CAPTION_INCHES)
     fig = Figure(figsize=size, dpi=DPI, layout="constrained")
     FigureCanvasAgg(fig)  # one Agg renderer for the layout pass and the PNG: text metrics computed once
-    fig.get_layout_engine().set(rect=(0, CAPTION_INCHES / size[1], 1, 1 - CAPTION_INCHES / size[1]), w_pad=0.08)
+    fig.get_layout_engine().set(rect=(0, strip / size[1], 1, 1 - strip / size[1]), w_pad=0.08)
     if nrows is None:
         return fig
     return fig, fig.subplots(nrows, ncols, squeeze=False, **kwargs)

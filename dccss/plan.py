@@ -9,6 +9,7 @@ it (a few mm of RB3 after a slip) is projected onto it.
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 
 import numpy as np
@@ -199,7 +200,12 @@ def figure(ds, at=None, title=None):
     v = view(ds)
     steps = instants(v, at)
     structure = has_structure(ds)
-    fig = drawing.new_figure((11.0, 11.4 if structure else 8.6), nrows=None)
+    from .viewer import run_notes
+
+    notes = run_notes(ds.attrs)  # a ring, a stop, a failure: what the reader must know, as the animation says
+    notes = textwrap.fill(notes.replace("\n", " "), 150) if notes else ""
+    fig = drawing.new_figure((11.0, 11.4 if structure else 8.6), nrows=None,
+                             caption_lines=1 + (notes.count("\n") + 1 if notes else 0))
     grid = fig.add_gridspec(3 + structure, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0) + (0.95,) * structure)
     plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
     trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
@@ -213,6 +219,7 @@ def figure(ds, at=None, title=None):
     right = draw_traces(traces, v)
     for n in steps:
         traces.axvline(v.t[n], color="0.5", lw=0.7, ls=":")
+    draw_events(traces, ds.attrs)
     traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9, loc="left")
     drawing.legend_on(traces, right, **ABOVE, ncols=3)
     shapes = drawing.body_shapes(g)
@@ -229,9 +236,30 @@ def figure(ds, at=None, title=None):
         half = max(1, grid.ncols // 2)
         draw_structure(fig.add_subplot(grid[3, :half]), fig.add_subplot(grid[3, half:]), ds, steps,
                        letters=(chr(100 + len(steps)), chr(101 + len(steps))))
-    drawing.caption_line(fig, title or caption(ds, v))
+    drawing.caption_line(fig, (title or caption(ds, v)) + ("\n" + notes if notes else ""))
     drawing.freeze(fig)
     return fig
+
+
+#: the events of a history drawn on its traces: attribute -> (colour, label)
+EVENTS = {"capacity_exceeded_at_s": ("tab:orange", "pad reaches a ring"), "stopped_at_s": ("0.3", "run stopped"),
+          "failure_time_s": ("tab:red", "solver failure")}
+
+
+def draw_events(ax, attrs):
+    """Dashed lines at the history's events (EVENTS): the ring, a stop, a solver failure (not the failure
+    that capacity "error" marks at the ring, whose line is the ring's)."""
+    lo, hi = ax.get_xlim()
+    for key, (colour, label) in EVENTS.items():
+        value = attrs.get(key)
+        if key == "failure_time_s" and (not int(attrs.get("failed", 0)) or attrs.get("failure_kind") == "capacity"):
+            continue
+        if key == "stopped_at_s" and value == attrs.get("capacity_exceeded_at_s"):
+            continue  # stopped where the ring is reached: one line
+        if value is not None and np.isfinite(value):
+            ax.axvline(value, color=colour, ls="--", lw=1.0, label=label)
+            hi = max(hi, float(value))
+    ax.set_xlim(lo, hi)
 
 
 def caption(ds, v: View) -> str:

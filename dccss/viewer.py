@@ -73,7 +73,9 @@ def is_real(value) -> bool:
 def run_notes(attrs):
     """The events of the run, for the foot of every frame: solver failure, capacity exceedance, stop."""
     notes = []
-    if int(attrs.get("failed", 0)):
+    if int(attrs.get("failed", 0)) and attrs.get("failure_kind") == "capacity":
+        notes.append("capacity: error ended the run at the ring, marked failed (on_failure: mark).")
+    elif int(attrs.get("failed", 0)):
         when = attrs.get("failure_time_s")
         note = "The solver failed" + (f" at t = {when:g} s" if is_real(when) else "")
         note += ": the data end at the last converged step."

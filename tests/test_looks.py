@@ -167,6 +167,28 @@ def test_plot_legends_lie_outside_the_data_and_the_caption_names_what_is_drawn(r
     assert outside_texts(fig) == []
 
 
+@pytest.mark.parametrize("capacity, on_failure, lines, note", [
+    ("stop", "error", ["pad reaches a ring"], "The run was stopped there"),
+    ("error", "mark", ["pad reaches a ring"], "capacity: error ended the run at the ring"),
+    ("continue", "mark", ["pad reaches a ring", "solver failure"], "The solver failed at t = "),
+])
+def test_plot_draws_the_events_of_a_history_and_says_them(capacity, on_failure, lines, note):
+    """A ring, a stop and a solver failure are drawn on the traces and said under the caption, as the
+    animation does, without overlapping the panels (before, ``dccss plot`` showed none: a failed run looked
+    like a short history)."""
+    ds = simulate(DFP1, Sine(0.9, 10.0, 0.6), model="stick_slip", dt=0.01, capacity=capacity, on_failure=on_failure)
+    fig = plan.figure(ds)
+    (traces,) = [ax for ax in fig.axes if ax.get_title(loc="left").startswith("(c)")]
+    assert [ln.get_label() for ln in traces.get_lines() if not ln.get_label().startswith("_")
+            and ln.get_linestyle() == "--" and ln.get_label() in ("pad reaches a ring", "solver failure")] == lines
+    caption = " ".join(_caption(fig).split())
+    assert note in caption and ("solver failed" in caption.lower()) == ("solver failure" in lines)
+    assert outside_texts(fig) == []
+    renderer = fig.canvas.get_renderer()
+    (text,) = [t for t in fig.texts if t.get_style() == "italic"]
+    assert all(not text.get_window_extent(renderer).overlaps(ax.get_tightbbox(renderer)) for ax in fig.axes)
+
+
 # --- 4. Fig. 18 (e): the sticking rotation and the ground velocity, which coincide ----------------------------
 def test_fig18e_tells_the_coinciding_sticking_rotation_and_ground_velocity_apart(runs):
     ds = runs["stick_slip_fine"]

@@ -417,3 +417,19 @@ def test_a_suite_of_eleven_records_gets_eleven_markers():
     from dccss.studies.plots import GROUP_MARKERS
 
     assert len(set(GROUP_MARKERS[:11])) == 11
+
+
+def test_a_ring_that_capacity_error_marks_is_no_solver_failure_on_the_study_figures():
+    """A history and a sweep case that ``capacity: error`` ended at the ring are drawn as reaching the ring,
+    not as solver failures (before: "solver failed (history ends)" and ✕ marks, and no ring box at all)."""
+    from dccss.excitation import Sine
+    from dccss.paper.prototypes import DFP1
+    from dccss.simulation import simulate
+    from dccss.studies.plots import _case_flags, _events
+
+    ds = simulate(DFP1, Sine(0.9, 10.0, 0.6), model="compliant", dt=0.01, capacity="error", on_failure="mark")
+    assert ds.attrs["failure_kind"] == "capacity" and [kind for kind, _, _ in _events(ds)] == ["capacity"]
+    cases = xr.Dataset({"capacity_exceeded": ("case", [1, 1, 0]), "failed": ("case", [1, 1, 1]),
+                        "capacity_time": ("case", [0.05, 0.05, np.nan]), "failure_time": ("case", [0.05, 0.3, 0.2])})
+    capacity, failed = _case_flags(cases)
+    assert list(capacity) == [True, True, False] and list(failed) == [False, True, True]

@@ -340,7 +340,7 @@ def _events(ds):
     if "capacity_exceeded_at_s" in ds.attrs:
         out.append(("capacity", float(ds.attrs["capacity_exceeded_at_s"]),
                     f"{ds.attrs.get('capacity_exceeded_plate', '')} ring".strip()))
-    if _failed(ds):
+    if _failed(ds) and ds.attrs.get("failure_kind") != "capacity":  # capacity "error": the ring's event ended it
         out.append(("failure", float(ds.attrs.get("failure_time_s", ds["t"].values[-1])), "failed"))
     return out
 
@@ -474,9 +474,17 @@ def _edges(centres, log):
 
 def _flags(ds, model, *dims, where=None):
     """(capacity exceeded, failed) boolean arrays of a model (at ``where``: {axis: value}), dimensions
-    ordered as ``dims``."""
-    sel = ds.sel(model=model, **(where or {}))
-    return tuple(sel[f].transpose(*dims).values.astype(bool) for f in ("capacity_exceeded", "failed"))
+    ordered as ``dims`` (``_case_flags``)."""
+    return _case_flags(ds.sel(model=model, **(where or {})).transpose(*dims))
+
+
+def _case_flags(sel):
+    """(capacity exceeded, the solver failed) of the cases of ``sel``: a case that capacity "error" marked
+    failed where it reached the ring is one that reached it, not a solver failure."""
+    capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
+    if "capacity_time" in sel and "failure_time" in sel:
+        failed = failed & ~(capacity & (sel["failure_time"].values == sel["capacity_time"].values))
+    return capacity, failed
 
 
 def _flag_labels(ds, models, dims):
@@ -485,7 +493,9 @@ def _flag_labels(ds, models, dims):
     counts = [_flags(ds, m, *dims) for m in models]
     cap = ", ".join(f"{_title(m)} {int(c.sum())}" for m, (c, _) in zip(models, counts))
     fail = ", ".join(f"{_title(m)} {int(f.sum())}" for m, (_, f) in zip(models, counts))
-    return (f"pad reaches a retaining ring ({cap} of {total})", f"solver failed, no result ({fail} of {total})")
+    ended = " (on the bottom edge where capacity: error ended the case there)" \
+        if str(ds.attrs.get("capacity_policy")) == "error" else ""
+    return (f"pad reaches a retaining ring ({cap} of {total}){ended}", f"solver failed, no result ({fail} of {total})")
 
 
 def _undefined(ax, label, model):
@@ -598,6 +608,10 @@ def _flag_marks(ax, x, values, capacity, failed, colour, failures):
     if capacity.any():
         ax.plot(x[capacity], values[capacity], ls="none", marker="s", ms=14, mfc="none", mec=CAPACITY_COLOUR,
                 mew=1.4, zorder=6, gid="capacity_exceeded")
+    ended = capacity & ~np.isfinite(values)  # no value: capacity "error" ended the case at the ring
+    if ended.any():
+        ax.plot(x[ended], np.zeros(int(ended.sum())), ls="none", marker="s", ms=11, mfc="none", mec=CAPACITY_COLOUR,
+                mew=1.4, transform=ax.get_xaxis_transform(), clip_on=False, zorder=6, gid="capacity_ended")
     failed = failed & ~np.isfinite(values)
     if failed.any():
         failures.append((x[failed], colour))
@@ -646,7 +660,7 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
                 shape = {} if group is None else {"marker": GROUP_MARKERS[g % len(GROUP_MARKERS)]}
                 marker = dict(_marker(model), **shape)
                 ax.plot(x, values, **style, **marker)
-                capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
+                capacity, failed = _case_flags(sel)
                 _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 suite = ds[f"{name}_suite"].sel(model=model)
@@ -683,7 +697,7 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
             values = factor * sel[name].values
             style = _line(model, models)
             ax.plot(x, values, ls="none", color=style["color"], zorder=style["zorder"], **_marker(model))
-            capacity, failed = (sel[f].values.astype(bool) for f in ("capacity_exceeded", "failed"))
+            capacity, failed = _case_flags(sel)
             _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 for statistic, look in SUITE_LINES.items():
