@@ -407,8 +407,14 @@ def test_a_legend_group_too_long_for_the_figure_goes_on_more_lines():
     ring = Line2D([], [], label="pad reaches a retaining ring")
     assert studyplots._legend_rows([group, [ring]], 12.0) == [group + [ring]]  # all on one line where they fit
     rows = studyplots._legend_rows([group, [ring]], 5.0)
-    assert [h for r in rows for h in r] == group + [ring] and len(rows) == 3
-    assert all(sum(0.6 + 0.065 * len(h.get_label()) for h in r) < 0.95 * 5.0 for r in rows)
+    assert [h for r in rows for h in r] == group + [ring] and len(rows) > 2
+
+    def size(h):
+        return 0.6 + 0.065 * len(h.get_label())
+
+    # the table's columns are as wide as their widest entry: the table fits, not only each row
+    columns = max(len(r) for r in rows)
+    assert sum(max(size(r[c]) for r in rows if c < len(r)) for c in range(columns)) < 0.95 * 5.0
 
 
 def test_a_suite_of_eleven_records_gets_eleven_markers():
@@ -433,3 +439,24 @@ def test_a_ring_that_capacity_error_marks_is_no_solver_failure_on_the_study_figu
                         "capacity_time": ("case", [0.05, 0.05, np.nan]), "failure_time": ("case", [0.05, 0.3, 0.2])})
     capacity, failed = _case_flags(cases)
     assert list(capacity) == [True, True, False] and list(failed) == [False, True, True]
+
+
+def test_a_legend_table_of_ten_records_fits_its_figure():
+    """The legend is a table whose columns are as wide as their widest entry: rows are cut so that the
+    table fits (before, each row was checked alone, and a ten-record suite's legend ran off both edges)."""
+    from matplotlib.lines import Line2D
+
+    from dccss.studies.plots import _legend_rows
+
+    def size(h):  # the estimate _legend_rows makes (inches)
+        return 0.6 + 0.065 * len(h.get_label())
+
+    groups = [[Line2D([], [], label=m) for m in ("Compliant Sliding", "Stick-Slip")],
+              [Line2D([], [], label=f"record = RSN1{i:02d}_SUITE") for i in range(10)],
+              [Line2D([], [], label=s) for s in ("mean over the records", "84th percentile over the records")],
+              [Line2D([], [], label="pad reaches a retaining ring (Compliant Sliding 5, Stick-Slip 5 of 20)"),
+               Line2D([], [], label="solver failed, no result (Compliant Sliding 0, Stick-Slip 2 of 20)")]]
+    rows = _legend_rows(groups, 16.4)
+    columns = max(len(row) for row in rows)
+    assert sum(max(size(row[c]) for row in rows if c < len(row)) for c in range(columns)) < 0.95 * 16.4
+    assert [h for row in rows for h in row] == [h for group in groups for h in group]  # all, in order

@@ -139,23 +139,32 @@ def _value_text(ds, name, value):
 
 
 def _legend_rows(groups, width):
-    """Groups of legend handles as rows of a table (one line if they all fit in ``width`` inches)."""
+    """Groups of legend handles as rows of a table (one line if they all fit in ``width`` inches): a group
+    too long for one line goes on as many as it needs, rows of at most as many entries as let the table,
+    whose columns are as wide as their widest entry, fit."""
+    def size(h):
+        return 0.6 + 0.065 * len(h.get_label())
+
     def fits(row):
-        return sum(0.6 + 0.065 * len(h.get_label()) for h in row) < 0.95 * width
+        return sum(size(h) for h in row) < 0.95 * width
 
     handles = [h for group in groups for h in group]
     if fits(handles):
         return [handles]
-    rows = []
-    for group in groups:  # a group too long for one line goes on as many as it needs
-        line = []
-        for h in group:
-            if line and not fits(line + [h]):
+    for most in range(max(len(group) for group in groups), 0, -1):
+        rows = []
+        for group in groups:
+            line = []
+            for h in group:
+                if line and (len(line) == most or not fits(line + [h])):
+                    rows.append(line)
+                    line = []
+                line.append(h)
+            if line:
                 rows.append(line)
-                line = []
-            line.append(h)
-        if line:
-            rows.append(line)
+        columns = max(len(row) for row in rows)
+        if sum(max(size(row[c]) for row in rows if c < len(row)) for c in range(columns)) < 0.95 * width:
+            break
     return rows
 
 
@@ -475,7 +484,8 @@ def _edges(centres, log):
 def _flags(ds, model, *dims, where=None):
     """(capacity exceeded, failed) boolean arrays of a model (at ``where``: {axis: value}), dimensions
     ordered as ``dims`` (``_case_flags``)."""
-    return _case_flags(ds.sel(model=model, **(where or {})).transpose(*dims))
+    flags = [n for n in ("capacity_exceeded", "failed", "capacity_time", "failure_time") if n in ds]
+    return _case_flags(ds[flags].sel(model=model, **(where or {})).transpose(*dims))
 
 
 def _case_flags(sel):
