@@ -77,12 +77,14 @@ def view(ds) -> View:
 
 def section_q(v: View, n, g, stick=False) -> dict:
     """Planar coordinates (m, degrees) of the device at step n in the vertical plane of its pad axis:
-    RB1, the pad and RB3 projected on that plane, the pad turned by -tilt (it leans along +h)."""
+    RB1, the pad and RB3 projected on that plane, the pad turned by -tilt (it leans along +h). With
+    ``stick``, the end of sticking projected on the same plane (the step's), its pad turned by its axis's
+    tilt within that plane: RB1 does not move between the phases, and is drawn where it is."""
+    lean = np.hypot(v.axis[n, 0], v.axis[n, 1])
+    h = v.axis[n, :2] / lean if lean > 0 else np.array([1.0, 0.0])
     axis = v.stick["axis"][n] if stick else v.axis[n]
     G = v.stick["G"][n] if stick else v.G[n]
-    lean = np.hypot(axis[0], axis[1])
-    h = axis[:2] / lean if lean > 0 else np.array([1.0, 0.0])
-    tilt = np.degrees(np.arctan2(lean, axis[2]))
+    tilt = np.degrees(np.arctan2(axis[:2] @ h, axis[2]))
     return {"Rx1": float(v.ground[n] @ h), "Ry1": 0.0, "theta1": 0.0, "Rx2": float(G[:2] @ h), "Ry2": float(G[2]),
             "theta2": -float(tilt), "Rx3": float(v.R3[n, :2] @ h), "Ry3": float(v.R3[n, 2]), "theta3": 0.0}
 
@@ -206,9 +208,10 @@ def figure(ds, at=None, title=None):
     notes = textwrap.fill(notes.replace("\n", " "), 150) if notes else ""
     fig = drawing.new_figure((11.0, 11.4 if structure else 8.6), nrows=None,
                              caption_lines=1 + (notes.count("\n") + 1 if notes else 0))
-    grid = fig.add_gridspec(3 + structure, max(2, len(steps)), height_ratios=(1.25, 0.8, 1.0) + (0.95,) * structure)
-    plan = fig.add_subplot(grid[0, : max(1, len(steps) // 2) if len(steps) > 2 else 1])
-    trace = fig.add_subplot(grid[0, max(1, len(steps) // 2) if len(steps) > 2 else 1:])
+    # two columns above and below the sections, which have their own row of as many columns as instants
+    grid = fig.add_gridspec(3 + structure, 2, height_ratios=(1.25, 0.8, 1.0) + (0.95,) * structure)
+    plan = fig.add_subplot(grid[0, 0])
+    trace = fig.add_subplot(grid[0, 1])
     draw_plan(plan, v, g, steps[-1], ground_label=ground_label(ds))
     plan.set_title(f"(a) plan at t = {v.t[steps[-1]]:.3g} s: rings of RB1 (solid), RB3 (dashed), pad rims", fontsize=9)
     drawing.legend_on(plan, **BESIDE)
@@ -223,18 +226,23 @@ def figure(ds, at=None, title=None):
     traces.set_title("(c) tilt of the pad and rise of RB3", fontsize=9, loc="left")
     drawing.legend_on(traces, right, **ABOVE, ncols=3)
     shapes = drawing.body_shapes(g)
+    sections = grid[2, :].subgridspec(1, max(2, len(steps)))
     for k, n in enumerate(steps):
-        ax = fig.add_subplot(grid[2, k])
+        ax = fig.add_subplot(sections[0, k])
         points = draw_section(ax, v, g, n, shapes)
         drawing.frame_points(ax, points, margin=2.0)
         azimuth = v.tilt_azimuth[n]
-        plane = f", leaning towards {azimuth:.0f} deg" if np.isfinite(azimuth) else ""
-        ax.set_title(f"({chr(100 + k)}) t = {v.t[n]:.3g} s: tilt {v.tilt[n]:.2f} deg{plane}", fontsize=9)
+        if len(steps) < 3:
+            plane = f", leaning towards {azimuth:.0f} deg" if np.isfinite(azimuth) else ""
+            heading = f"({chr(100 + k)}) t = {v.t[n]:.3g} s: tilt {v.tilt[n]:.2f} deg{plane}"
+        else:  # three or four sections side by side: a shorter title on two lines
+            plane = f", towards {azimuth:.0f}°" if np.isfinite(azimuth) else ""
+            heading = f"({chr(100 + k)}) t = {v.t[n]:.3g} s\ntilt {v.tilt[n]:.2f}°{plane}"
+        ax.set_title(heading, fontsize=9)
         ax.set_xlabel("along the lean (cm)")
         ax.set_ylabel("z (cm)")
     if structure:
-        half = max(1, grid.ncols // 2)
-        draw_structure(fig.add_subplot(grid[3, :half]), fig.add_subplot(grid[3, half:]), ds, steps,
+        draw_structure(fig.add_subplot(grid[3, 0]), fig.add_subplot(grid[3, 1]), ds, steps,
                        letters=(chr(100 + len(steps)), chr(101 + len(steps))))
     drawing.caption_line(fig, (title or caption(ds, v)) + ("\n" + notes if notes else ""))
     drawing.freeze(fig)

@@ -250,3 +250,17 @@ def test_every_case_set_caption_prints_its_symbols_in_mathtext():
     for name, case_set in CONFIG["case_sets"].items():
         caption = _outside_math(title_text(case_set["description"]))
         assert "_" not in caption and "theta2" not in caption and "alpha" not in caption, (name, caption)
+
+
+def test_the_end_of_sticking_is_drawn_in_the_plane_of_the_step(runs):
+    """A section's end-of-sticking outline is the same plane's: RB1, which does not move between the phases,
+    is drawn where the step's is (before, each configuration was projected on its own lean, and a sticking
+    phase leaning the other way drew RB1 mirrored)."""
+    ds = simulate(DFP1, Oriented(Sine(0.15, 2 * np.pi, 1.0), 137.0), model="stick_slip", dt=0.01)
+    v, g = plan.view(ds), geometry_from("DFP1")
+    flipped = 0
+    for n in range(1, ds.sizes["t"]):
+        step, stuck = plan.section_q(v, n, g), plan.section_q(v, n, g, stick=True)
+        assert stuck["Rx1"] == step["Rx1"]
+        flipped += np.sign(stuck["theta2"]) == -np.sign(step["theta2"]) != 0
+    assert flipped > 0  # the sticking phase leans the other way at some steps: the case the fix is about

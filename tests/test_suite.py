@@ -271,11 +271,15 @@ def test_a_suite_scaled_to_a_spectrum_keeps_each_records_factor(suite):
                                "sweep": {"record": ["records/*.AT2"]}, "models": ["compliant"], "histories": []},
                               suite)
     ds = _combined(study)
-    assert ds["record_sa_unscaled"].attrs["units"] == "g" and ds["record_sa_unscaled"].attrs["scaled_to_sa_g"] == 0.2
+    from dccss.records import G
+
+    # in m s-2: to a CF reader "g" is the gram
+    sa = ds["record_sa_unscaled"]
+    assert sa.attrs["units"] == "m s-2" and sa.attrs["scaled_to_sa_g"] == 0.2
     for name in NAMES:
         a = study.records[name].attrs()
         assert float(ds["record_scale"].sel(record=name)) == a["record_scale"]
-        assert float(ds["record_sa_unscaled"].sel(record=name)) == a["record_sa_unscaled_g"]
+        assert float(ds["record_sa_unscaled"].sel(record=name)) == a["record_sa_unscaled_g"] * G
         assert a["record_scale"] * a["record_sa_unscaled_g"] == pytest.approx(0.2, rel=1e-12)
     assert len(set(ds["record_scale"].values)) == 3  # a factor of each record's own
 

@@ -73,3 +73,16 @@ def test_progress_is_reported_once_at_the_end():
 def test_unknown_capacity_policy_is_refused():
     with pytest.raises(ValueError, match="capacity must be one of"):
         run("compliant", Sine(0.27, 30.0, 0.05), capacity="ignore")
+
+
+def test_a_spatial_sweep_reports_progress_once_at_the_end():
+    """The spatial models run case after case: progress (steps) is reported once, when all are done
+    (before, after each case, so a log said "100 %" while most cases were still to run)."""
+    from dccss.mechanics import runs
+
+    t = np.arange(6) * 0.01
+    Xg = np.stack([np.stack([0.01 * np.sin(3 * t), 0.005 * np.sin(2 * t)], axis=-1)] * 3, axis=1)  # (T, 3, 2)
+    calls = []
+    runs.summaries("compliant", Geometry.from_degrees(**TABLE1["DFP1"]), Xg, times=t,
+                   progress=lambda n, total: calls.append((n, total)))
+    assert calls == [(5, 5)]

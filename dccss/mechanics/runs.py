@@ -314,8 +314,6 @@ def _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity
         except ConvergenceError as err:
             err.index = (k,)
             raise
-        if progress is not None:
-            progress(T - 1, T - 1)
         if run.reached:
             reached[k] = run.reached["t"]
             if capacity == "error" and not mark:
@@ -323,6 +321,8 @@ def _spatial_summaries(model, geometry, Xg, theta2_0, azimuth, options, capacity
         if run.failure is not None:
             failure[k] = now[run.steps]
         rows.append(spatial.summary(run.history, g))
+    if progress is not None:  # once, when every case is done (as the planar kernels)
+        progress(T - 1, T - 1)
     out = {key: np.array([row[key] for row in rows]) for key in rows[0]} if rows else {}
     out["capacity_exceeded"] = ~np.isnan(reached)
     return mark_failures(out, failure, reached, capacity)

@@ -7,6 +7,7 @@ import xarray as xr
 
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
+from ..mechanics.structure import G
 from ..mechanics.summaries import model_specific, specs
 from ..results import global_attrs, variable
 
@@ -141,8 +142,10 @@ def record_peaks(study) -> dict:
     if "record_scaled_to_sa_g" in attrs[0]:  # each record's own factor, from its own spectrum
         keys = ("record_scaled_to_sa_g", "record_scaling_period_s", "record_scaling_damping",
                 "record_scaling_definition")
-        out["record_sa_unscaled"] = xr.Variable(("record",), np.array([a["record_sa_unscaled_g"] for a in attrs]), {
-            "units": "g", "long_name": "the record's spectral acceleration before scaling",
+        # in m s-2: to CF's units (UDUNITS) "g" is the gram
+        sa = np.array([a["record_sa_unscaled_g"] for a in attrs]) * G
+        out["record_sa_unscaled"] = xr.Variable(("record",), sa, {
+            "units": "m s-2", "long_name": "the record's spectral acceleration before scaling (/ 9.80665 for g)",
             **{k.removeprefix("record_"): attrs[0][k] for k in keys if k in attrs[0]}})
     if "record_orientation" in attrs[0]:
         out["record_orientation"] = xr.Variable(("record",), np.array([a["record_orientation"] for a in attrs],
