@@ -12,9 +12,11 @@ respectively, uniform steps) would add a dependency for a few lines.
 
 Two components: ``rotd(... , percentile=50)`` is RotD50, the median over the horizontal
 orientations 0-179° of the peak response to the rotated component (Boore 2010; what NGA-West2
-reports); since the oscillator is linear, the response to a component rotated by θ is
-cos θ u_x + sin θ u_y, so the two responses are computed once. ``geometric_mean`` is the geometric
-mean of the two as-recorded components' PSA (older practice).
+reports), ``percentile=100`` RotD100, the largest (the maximum-direction spectrum of ASCE 7-22
+§16.2.3.2, which Ch. 17 scales isolated structures' records to); since the oscillator is linear,
+the response to a component rotated by θ is cos θ u_x + sin θ u_y, so the two responses are
+computed once. ``geometric_mean`` is the geometric mean of the two as-recorded components' PSA
+(older practice).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ import numpy as np
 from .mechanics.structure import G, Ground, solve
 
 #: the definitions of a pair's spectral acceleration that ``scale_factor`` knows
-PAIR_DEFINITIONS = ("rotd50", "geometric_mean")
+PAIR_DEFINITIONS = ("rotd50", "rotd100", "geometric_mean")
 ORIENTATIONS = np.radians(np.arange(180.0))  # 1° steps, as NGA-West2
 
 
@@ -54,12 +56,12 @@ def rotd(time, ax, ay, period, damping=0.05, percentile=50.0) -> float:
 
 def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50") -> float:
     """The spectral acceleration (m/s²) of a ``records.Record`` or of a ``records.RecordPair``
-    (``definition``: rotd50 or geometric_mean)."""
+    (``definition``: rotd50, rotd100 or geometric_mean)."""
     if excitation.components == 1:
         return psa(excitation.time, excitation.acceleration, period, damping)
     x, y = excitation.x, excitation.y
-    if definition == "rotd50":
-        return rotd(excitation.time, x.acceleration, y.acceleration, period, damping)
+    if definition in ("rotd50", "rotd100"):
+        return rotd(excitation.time, x.acceleration, y.acceleration, period, damping, float(definition[4:]))
     if definition == "geometric_mean":
         return float(np.sqrt(psa(x.time, x.acceleration, period, damping) * psa(y.time, y.acceleration, period,
                                                                                damping)))

@@ -48,13 +48,19 @@ def test_rotd_of_a_pair():
     pair = RecordPair(x, y)
     assert spectra.spectral_acceleration(pair, 1.0, definition="geometric_mean") == pytest.approx(
         np.sqrt(one * spectra.psa(t, y.acceleration, 1.0)), rel=1e-14)
+    # RotD100: the largest over orientations of the PSA of the rotated component, each computed alone
+    rotated = [spectra.psa(t, np.cos(a) * x.acceleration + np.sin(a) * y.acceleration, 1.0)
+               for a in np.radians(np.arange(0.0, 180.0, 1.0))]
+    rotd100 = spectra.spectral_acceleration(pair, 1.0, definition="rotd100")
+    assert rotd100 == pytest.approx(max(rotated), rel=1e-12)
+    assert rotd100 > spectra.spectral_acceleration(pair, 1.0) > 0
 
 
 CASE = {"prototype": "DFP1", "dt": 0.01, "model": "compliant"}
 
 
 @pytest.mark.parametrize("file", ["synthetic.AT2", ["synthetic.AT2", "synthetic_y.AT2"]])
-@pytest.mark.parametrize("definition", [None, "geometric_mean"])
+@pytest.mark.parametrize("definition", [None, "geometric_mean", "rotd100"])
 def test_a_record_scaled_to_a_spectral_acceleration_has_it(file, definition):
     if definition and not isinstance(file, list):
         return
