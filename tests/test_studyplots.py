@@ -460,3 +460,15 @@ def test_a_legend_table_of_ten_records_fits_its_figure():
     columns = max(len(row) for row in rows)
     assert sum(max(size(row[c]) for row in rows if c < len(row)) for c in range(columns)) < 0.95 * 16.4
     assert [h for row in rows for h in row] == [h for group in groups for h in group]  # all, in order
+
+
+def test_long_record_names_are_shortened_on_the_ticks_and_still_told_apart():
+    """Record names of 70 characters broke the maps' layout (the axes collapsed): the ticks keep their
+    start and end around "…", with as many characters as tell them apart."""
+    from dccss.studies.plots import _shortened
+
+    names = ["RSN1234_IMPERIAL_VALLEY_06_EL_CENTRO_ARRAY_NUMBER_7_COMPONENT_140_FILTERED",
+             "RSN1234_IMPERIAL_VALLEY_06_EL_CENTRO_ARRAY_NUMBER_7_COMPONENT_230_FILTERED", "RSN6_ELC"]
+    short = _shortened(names)
+    assert short[2] == "RSN6_ELC" and len(set(short)) == 3 and all(len(s) < 50 for s in short)
+    assert all(s.startswith(n[:10]) and "…" in s for s, n in zip(short[:2], names))

@@ -292,6 +292,7 @@ def _history_column(col, label, runs, models):
     for ax in col[len(HISTORY_ROWS):]:
         ax.axvline(0, color="0.6", lw=0.6, zorder=1)
     wrapped = [textwrap.fill(note, width=int(15 * COLUMN_INCHES), subsequent_indent="  ") for note in notes]
+    label = textwrap.fill(label, width=int(11 * COLUMN_INCHES), subsequent_indent="  ", break_on_hyphens=False)
     col[0].set_title("\n".join([label, *wrapped]), loc="left", fontsize=9)
     return events
 
@@ -695,6 +696,17 @@ def _suite_handles():
             for statistic, look in SUITE_LINES.items()]
 
 
+def _shortened(names, most=24):
+    """Tick labels of at most ``most`` characters: a longer name keeps its start and end around "…" (as
+    many characters as keep the names told apart)."""
+    for keep in range(most, max(map(len, names)) + 1):
+        half = (keep - 1) // 2
+        short = [n if len(n) <= keep else f"{n[:half]}…{n[len(n) - half:]}" for n in names]
+        if len(set(short)) == len(names):
+            return short
+    return list(names)
+
+
 def _draw_categories(axs, ds, drawn, marks, variables, models):
     """One panel per variable: a mark per model at each category's integer position."""
     name_axis = drawn[0]
@@ -715,8 +727,8 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
                                color=style["color"], **look)
         _failure_marks(ax, failures)
         _line_marks(ax, ds, name_axis, marks)
-        ax.set_xticks(x, names, rotation=30 if name_axis == "record" else 0, ha="right" if name_axis == "record"
-                      else "center")
+        ax.set_xticks(x, _shortened(names), rotation=30 if name_axis == "record" else 0,
+                      ha="right" if name_axis == "record" else "center")
         ax.set_xlim(-0.6, len(names) - 0.4)
         ax.set_xlabel(_axis_label(ds, name_axis))
         _summary_axes(ax, ds, name, label, unit, models)
