@@ -270,6 +270,11 @@ def _history_column(col, label, runs, models):
     if has_structure(ground):
         _structure(col, ground)
     events, notes = set(), []
+    # the ring tags of two models: the earlier one left of its line, the later one right of it (tags on
+    # the sides facing each other covered one another); a failure's tag left of its line
+    rings = sorted((time, slot) for slot, model in enumerate(m for m in models if m in runs)
+                   for kind, time, _ in _events(runs[model]) if kind == "capacity")
+    right = {slot for _, slot in rings[1::2]}
     for slot, model in enumerate(m for m in models if m in runs):
         ds, style = runs[model], _line(model, models)
         t = ds["t"].values
@@ -280,7 +285,7 @@ def _history_column(col, label, runs, models):
             for ax in col[:len(HISTORY_ROWS)]:  # as wide as the model's curve: coinciding lines stay visible
                 ax.axvline(time, color=style["color"], zorder=style["zorder"] + 3,
                            **{**EVENT_LINE[kind], "lw": 0.8 * style["lw"]})
-            side = 1 if slot % 2 and kind == "capacity" else -1  # a second model's ring tag right of its line
+            side = 1 if slot in right and kind == "capacity" else -1
             col[0].annotate(tag, (time, 0.97), xycoords=("data", "axes fraction"), rotation=90,
                             ha="left" if side > 0 else "right", va="top", fontsize=7, color=style["color"],
                             xytext=(2 * side, 0), textcoords="offset points",
