@@ -258,6 +258,7 @@ def draw_events(ax, attrs):
     """Dashed lines at the history's events (EVENTS): the ring, a stop, a solver failure (not the failure
     that capacity "error" marks at the ring, whose line is the ring's)."""
     lo, hi = ax.get_xlim()
+    drawn = False
     for key, (colour, label) in EVENTS.items():
         value = attrs.get(key)
         if key == "failure_time_s" and (not int(attrs.get("failed", 0)) or attrs.get("failure_kind") == "capacity"):
@@ -266,8 +267,9 @@ def draw_events(ax, attrs):
             continue  # stopped where the ring is reached: one line
         if value is not None and np.isfinite(value):
             ax.axvline(value, color=colour, ls="--", lw=1.0, label=label)
-            hi = max(hi, float(value))
-    ax.set_xlim(lo, hi)
+            hi, drawn = max(hi, float(value)), True
+    if drawn:
+        ax.set_xlim(lo, hi)
 
 
 def caption(ds, v: View) -> str:
@@ -372,8 +374,10 @@ class Scene:
         self.dynamic = []
         frames = np.asarray(frames, dtype=int)
         fig.set_size_inches(*FIGSIZE)
-        grid = fig.add_gridspec(2, 3, height_ratios=(1.6, 1.0), left=0.06, right=0.94, top=0.9, bottom=0.1,
-                                wspace=0.3, hspace=0.3)
+        notes = run_notes(ds.attrs)  # the run's events, at the foot: room for their lines below the x labels
+        grid = fig.add_gridspec(2, 3, height_ratios=(1.6, 1.0), left=0.06, right=0.94, top=0.9,
+                                bottom=0.1 + (0.025 * (notes.count("\n") + 1) if notes else 0.0), wspace=0.3,
+                                hspace=0.3)
         plan = self.plan = fig.add_subplot(grid[0, 0])
         section = self.section = fig.add_subplot(grid[0, 1:])
         trace = fig.add_subplot(grid[1, 0])
@@ -418,12 +422,12 @@ class Scene:
         trace.set_title("trace of the pad axis", fontsize=9)
         self.tip = self._add(trace.plot([], [], "o", color="tab:blue", ms=5)[0])
         right = draw_traces(traces, v)
+        draw_events(traces, ds.attrs)
         drawing.legend_on(traces, right, fontsize=7, loc="upper right")
         self.cursor = self._add(traces.axvline(v.t[0], color="crimson", lw=1.0))
         title = ds.attrs.get("title", "dccss history")
         drawing.fit_width(fig.suptitle(f"{title}{' - ' + name if name else ''}", fontsize=10), fig)
         self.status = self._add(fig.text(0.5, 0.935, "", ha="center", fontsize=9))
-        notes = run_notes(ds.attrs)
         if notes:
             fig.text(0.5, 0.01, notes, ha="center", va="bottom", fontsize=7, color="crimson")
 

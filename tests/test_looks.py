@@ -144,6 +144,23 @@ def test_every_text_of_a_frame_stays_inside(runs, name):
     assert outside_texts(fig) == []
 
 
+def test_a_spatial_frame_draws_its_events_and_says_them_below_its_labels():
+    """A bidirectional history's frame draws the ring on its traces and says it at the foot, below the axes'
+    labels (the foot overprinted the x labels, and the traces had no event line)."""
+    ds = simulate(DFP1, Oriented(Sine(0.6, 10.0, 0.6), 30.0), model="stick_slip", dt=0.01, capacity="error",
+                  on_failure="mark")
+    assert ds.attrs["failure_kind"] == "capacity"
+    fig = Figure()
+    draw_frame(fig, ds, -1)
+    labels = [ln.get_label() for ax in fig.axes for ln in ax.get_lines()]
+    assert "pad reaches a ring" in labels and "solver failure" not in labels
+    renderer = fig.canvas.get_renderer() if hasattr(fig.canvas, "get_renderer") else None
+    (foot,) = [t for t in fig.texts if t.get_text().startswith("capacity: error ended the run")]
+    box = foot.get_window_extent(renderer)
+    assert all(not box.overlaps(ax.get_tightbbox(renderer)) for ax in fig.axes)
+    assert outside_texts(fig) == []
+
+
 # --- 3. dccss plot: legends off the data, the caption naming what is drawn -----------------------------------
 def _caption(fig):
     (caption,) = [t for t in fig.texts if t.get_style() == "italic"]
