@@ -388,7 +388,9 @@ class Scene:
                 continue  # a ring reached under capacity "error" is the ring's line
             if is_real(value) and lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
                 ax.axvline(value, color=colour, ls="--", lw=1.0)
-                ax.set_xlim(lo, max(hi, value))
+                if value >= hi:  # at or after the last step: off the right spine, where it would not show
+                    hi = value + 0.01 * (hi - lo)
+                    ax.set_xlim(lo, hi)
                 drawn.append((label, colour))
         return drawn
 
