@@ -3,12 +3,15 @@ components; run by ``mechanics.runs``) and the breakaway (first-step) analysis."
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import xarray as xr
 
 from .excitation import step_times
 from .mechanics import models, runs
 from .mechanics.capacity import CapacityError
+from .mechanics.geometry import Geometry
 from .mechanics.newton import NewtonOptions
 from .mechanics.structure import Structure, respond
 from .results import breakaway_dataset, history_dataset, spatial_dataset, structure_variables
@@ -34,7 +37,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     normals : str
         'signed' (consistent) or 'unsigned' (the authors' |alpha|).
     options : NewtonOptions
-        Newton-Raphson tolerance and iteration cap.
+        Newton-Raphson tolerance and iteration cap (its ``on_failure`` is a sweep's: a history's
+        failure policy is ``on_failure`` below).
     capacity : str
         What to do when the pad reaches a retaining ring: 'continue' (flag it), 'stop' (the dataset
         ends at that step) or 'error' (raise CapacityError; with on_failure 'mark' the history ends at
@@ -74,7 +78,13 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
+    _check_arguments(geometry, excitation, theta2_0, options, structure)
     times = step_times(excitation, dt)
+    left = excitation.t_end - times[-1]
+    if left > 1e-9 * float(dt):
+        warnings.warn(f"dt = {float(dt):g} s does not divide the excitation's duration "
+                      f"({excitation.t_end - excitation.t_start:g} s): the history ends at t = {times[-1]:.6g} s, "
+                      f"{left:.3g} s before the motion does", stacklevel=2)
     response = None
     if structure is None:
         imposed = excitation.displacement(times)
@@ -109,6 +119,26 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if run.status == "stopped":
         ds.attrs["stopped_at_s"] = float(times[run.steps - 1])
     return ds
+
+
+def _check_arguments(geometry, excitation, theta2_0, options, structure):
+    """A TypeError or ValueError names an argument of ``simulate`` that is not what it takes."""
+    if not isinstance(geometry, Geometry):
+        raise TypeError(f"geometry must be a Geometry (e.g. Geometry.from_degrees(...) or a Table 1 prototype), got "
+                        f"{type(geometry).__name__} {geometry!r:.80}")
+    if np.ndim(geometry.L) != 0:
+        raise ValueError("geometry: a history runs one device: its fields must be scalars")
+    if not all(hasattr(excitation, a) for a in ("displacement", "t_start", "t_end")):
+        raise TypeError(f"excitation must be a Sine, Table, PlaneTable, Record, RecordPair or one of them Oriented, "
+                        f"Scaled or as a Component, got {type(excitation).__name__} {excitation!r:.80}")
+    if isinstance(theta2_0, (bool, str)) or np.ndim(theta2_0) != 0 or not isinstance(
+            np.asarray(theta2_0).item(), (int, float)):
+        raise TypeError(f"theta2_0 must be a number (rad), got {type(theta2_0).__name__} {theta2_0!r:.80}")
+    if not isinstance(options, NewtonOptions):
+        raise TypeError(f"options must be a NewtonOptions, got {type(options).__name__} {options!r:.80}")
+    if structure is not None and not isinstance(structure, Structure):
+        raise TypeError(f"structure must be a Structure (e.g. Structure(friction=0.05)) or None, got "
+                        f"{type(structure).__name__} {structure!r:.80}")
 
 
 def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="signed",

@@ -7,7 +7,7 @@ from dccss.excitation import Sine, Table, step_times
 from dccss.mechanics import runs
 from dccss.mechanics.capacity import CapacityError
 from dccss.mechanics.geometry import Geometry
-from dccss.mechanics.newton import ConvergenceError
+from dccss.mechanics.newton import ConvergenceError, NewtonOptions
 from dccss.paper.prototypes import DFP1, TABLE1
 from dccss.simulation import breakaway, simulate
 
@@ -126,3 +126,36 @@ def test_capacity_error_under_mark_ends_the_history_at_the_ring_marked_failed(mo
     assert np.array_equal(ds["theta2"].values, stopped["theta2"].values)
     with pytest.raises(CapacityError):
         simulate(STEEP_TOP, Sine(0.40, 10.0, 1.0), model=model, dt=0.01, capacity="error")
+
+
+def test_a_sweeps_failure_policy_in_a_historys_options_hides_no_failure():
+    """``NewtonOptions.on_failure`` is a sweep's: a history applies ``on_failure`` (before, options with
+    "mark" gave a planar history of NaN steps marked as not failed)."""
+    options = NewtonOptions(max_iter=1, on_failure="mark")
+    with pytest.raises(ConvergenceError):
+        simulate(DFP1, Sine(0.1, 6.0, 1.0), dt=0.01, options=options)
+    ds = simulate(DFP1, Sine(0.1, 6.0, 1.0), dt=0.01, options=options, on_failure="mark")
+    assert ds.attrs["failed"] == 1 and ds.attrs["failure_kind"] == "solver" and not np.isnan(ds["theta2"]).any()
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(geometry={"R1": 1.0}), "geometry must be a Geometry"),
+    (dict(excitation=1.0), "excitation must be a Sine, Table"),
+    (dict(theta2_0="0"), "theta2_0 must be a number"),
+    (dict(theta2_0=np.zeros(2)), "theta2_0 must be a number"),
+    (dict(structure={"friction": 0.05}), "structure must be a Structure"),
+    (dict(options={"tol": 1e-9}), "options must be a NewtonOptions"),
+])
+def test_simulate_names_a_wrong_argument(kw, message):
+    """Before: AttributeErrors ('dict' object has no attribute 'L'), or numpy's after the whole run."""
+    args = {"geometry": DFP1, "excitation": Sine(0.1, 6.0, 1.0), **kw}
+    with pytest.raises(TypeError, match=message):
+        simulate(args.pop("geometry"), args.pop("excitation"), dt=0.01, **args)
+
+
+def test_a_step_that_does_not_divide_the_duration_is_warned_about():
+    """Before, the motion's end was dropped silently (a 1 s sine at dt = 0.3 s ended at 0.9 s)."""
+    with pytest.warns(UserWarning, match=r"dt = 0.3 s does not divide the excitation's duration \(1 s\): the "
+                                         r"history ends at t = 0.9 s, 0.1 s before the motion does"):
+        ds = simulate(DFP1, Sine(0.1, 6.0, 1.0), dt=0.3)
+    assert ds["t"].values[-1] == pytest.approx(0.9)

@@ -24,7 +24,7 @@ ring it reached and the failure; ``summaries`` the per-case summaries of a sweep
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -127,6 +127,9 @@ def history(model, geometry, Xg, theta2_0=0.0, *, azimuth=0.0, normals="signed",
     after each step (once, at the end, on the kernels)."""
     registry.model(model)  # a ValueError names the known models
     check_policies(capacity, on_failure)
+    if not isinstance(options, NewtonOptions):
+        raise TypeError(f"options must be a NewtonOptions, got {type(options).__name__} {options!r}")
+    options = replace(options, on_failure="error")  # a sweep's policy: a history applies its own, on_failure
     check_start(theta2_0)
     if np.ndim(geometry.L) != 0:
         raise ValueError("a history runs one case: geometry fields must be scalars")
