@@ -30,11 +30,20 @@ PAIR_DEFINITIONS = ("rotd50", "rotd100", "geometric_mean")
 ORIENTATIONS = np.radians(np.arange(180.0))  # 1° steps, as NGA-West2
 
 
+def _check(period, damping):
+    """A ValueError names a period (s) that is not a finite number > 0 or a damping ratio not in [0, 1)."""
+    if isinstance(period, bool) or not isinstance(period, (int, float, np.integer, np.floating)) or \
+            not np.isfinite(period) or not period > 0:
+        raise ValueError(f"period must be a finite number > 0 (s), got {period!r}")
+    if isinstance(damping, bool) or not isinstance(damping, (int, float, np.integer, np.floating)) or \
+            not 0 <= damping < 1:
+        raise ValueError(f"damping must be a ratio 0 <= damping < 1, got {damping!r}")
+
+
 def response(time, acceleration, period, damping=0.05) -> np.ndarray:
     """The oscillator's displacement u (m) at the sample times: (n,) for (n,) acceleration (m/s²),
     (n, 2) for two components."""
-    if not period > 0:
-        raise ValueError(f"period must be > 0 s, got {period!r}")
+    _check(period, damping)
     omega = 2 * np.pi / period
     ground = Ground.from_samples(time, acceleration)
     u = solve(ground, np.asarray(time, dtype=float), G / omega**2, 0.0, damping).stroke
@@ -43,6 +52,7 @@ def response(time, acceleration, period, damping=0.05) -> np.ndarray:
 
 def psa(time, acceleration, period, damping=0.05) -> float:
     """Pseudo-spectral acceleration (m/s²) of one component at ``period`` (s) and ``damping``."""
+    _check(period, damping)
     return float((2 * np.pi / period) ** 2 * np.max(np.abs(response(time, acceleration, period, damping))))
 
 
@@ -57,6 +67,11 @@ def rotd(time, ax, ay, period, damping=0.05, percentile=50.0) -> float:
 def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50") -> float:
     """The spectral acceleration (m/s²) of a ``records.Record`` or of a ``records.RecordPair``
     (``definition``: rotd50, rotd100 or geometric_mean)."""
+    if definition not in PAIR_DEFINITIONS:
+        raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
+    if not hasattr(excitation, "acceleration") and not hasattr(excitation, "x"):
+        raise TypeError(f"excitation must be a Record or a RecordPair (its samples' accelerations), got "
+                        f"{type(excitation).__name__}")
     if excitation.components == 1:
         return psa(excitation.time, excitation.acceleration, period, damping)
     x, y = excitation.x, excitation.y

@@ -108,3 +108,26 @@ def test_a_window_does_not_change_the_scale_to_a_spectrum(file):
     np.testing.assert_allclose(cut.displacement(t), whole.displacement(t), rtol=0, atol=1e-15)
     # and the window's own spectrum differs: the factor would have
     assert spectra.spectral_acceleration(cut, 2.5) != pytest.approx(0.3 * G, rel=1e-6)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda t, a: spectra.psa(t, a, 0.0), r"period must be a finite number > 0 \(s\), got 0.0"),
+    (lambda t, a: spectra.psa(t, a, 1.0, -0.1), r"damping must be a ratio 0 <= damping < 1, got -0.1"),
+    (lambda t, a: spectra.psa(t, a, 1.0, 1.0), r"damping must be a ratio 0 <= damping < 1, got 1.0"),
+    (lambda t, a: spectra.rotd(t, a, a, float("nan")), r"period must be a finite number > 0"),
+])
+def test_spectra_name_a_bad_period_or_damping(call, message):
+    """Before: a ZeroDivisionError, a silent 181976 m/s² for a negative damping, NaN or a math domain error."""
+    x = Record.from_file(RECORDS / "synthetic.AT2")
+    with pytest.raises(ValueError, match=message):
+        call(x.time, x.acceleration)
+
+
+def test_spectral_acceleration_names_a_bad_definition_or_excitation():
+    from dccss.excitation import Sine
+
+    x = Record.from_file(RECORDS / "synthetic.AT2")
+    with pytest.raises(ValueError, match=r"definition must be one of \['rotd50', 'rotd100', 'geometric_mean'\]"):
+        spectra.spectral_acceleration(x, 1.0, definition="bogus")  # ignored for one component before
+    with pytest.raises(TypeError, match="excitation must be a Record or a RecordPair"):
+        spectra.spectral_acceleration(Sine(0.1, 6.0, 1.0), 1.0)
