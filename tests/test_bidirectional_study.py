@@ -149,3 +149,12 @@ def test_spatial_sweep_marks_a_failed_case_and_goes_on():
     with pytest.raises(ConvergenceError) as err:
         runs.summaries("stick_slip", g, X, options=NewtonOptions(max_iter=5), times=t)
     assert err.value.index == (1,)
+
+
+def test_a_bidirectional_studys_corners_are_named_as_its_rim_points():
+    """A bidirectional study's I_A_max .. I_D_max are the section's rim points, as its histories name them
+    (their long names said "corner A2", whose history values they are not)."""
+    study = Study.from_config(changed(AZIMUTHS, sweep={"azimuth": [30.0]}, histories=[], models=["compliant"]))
+    part = run_chunk(study, "compliant", 0)
+    assert part["I_A_max"].attrs["long_name"].startswith("largest interpenetration at the lower trailing rim point")
+    assert part["I_D_max"].attrs["long_name"].startswith("largest interpenetration at the upper leading rim point")

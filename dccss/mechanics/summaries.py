@@ -14,6 +14,7 @@ import numpy as np
 from . import backend, registry
 from .capacity import CAPACITY_POLICIES
 from .kinematics import CORNERS
+from .spatial import RIM_POINTS
 
 #: summary variable -> (units, long_name) of every model (a model's own: its registry entry's; all: ``specs``)
 COMMON = {
@@ -30,10 +31,14 @@ COMMON = {
     "failed": ("1", "the solver failed for this case (its pad's summaries are NaN)"),
     "failure_time": ("s", "time of the step at which the solver failed (NaN if it did not)"),
 }
-#: the rotation summaries under bidirectional motion, where |theta2| is the pad axis's tilt (``spatial.summary``)
+#: the summaries that mean something else under bidirectional motion (``spatial.summary``): |theta2| is the
+#: pad axis's tilt, and the corners are the rim points of each step's section (A, B, C, D for a step along +x)
 TILT_SUMMARIES = {
     "theta2_max_abs": ("degree", "largest tilt of the pad axis from the vertical, at the end of a step"),
     "theta2_end": ("degree", "residual tilt of the pad axis at t_end"),
+    **{f"I_{c}_max": ("m", f"largest interpenetration at the {name.replace('_', ' ')} rim point of a step's section "
+                           f"(corner {c}2 of a step along +x; positive into the plate)")
+       for c, name in zip(CORNERS, RIM_POINTS)},
 }
 
 
