@@ -1,8 +1,11 @@
 """dccss: kinematics of Double Concave Curved Surface Sliders (double friction pendulum isolators).
 
-A planar three-rigid-body model of a DCCSS under an imposed ground displacement, solved by
-Newton-Raphson on the nonlinear constraint equations of Bianco, Monti & Belfiore (Buildings 2021,
-11, 50), under two hypotheses: Compliant Sliding and Stick-Slip.
+The three-rigid-body model of a DCCSS of Bianco, Monti & Belfiore (Buildings 2021, 11, 50), solved by
+Newton-Raphson on its nonlinear constraint equations under two hypotheses, Compliant Sliding and
+Stick-Slip: in the plane under one ground component, as the paper, and in space under two. The device
+undergoes the ground's displacement, or the stroke of an isolated structure on it driven by a recorded
+ground acceleration (``Structure``); records are read, processed and scaled to a spectrum
+(``Record``, ``RecordPair``, ``spectra``).
 
 Typical use::
 
@@ -11,7 +14,8 @@ Typical use::
                               alpha23=10, hr1=0.02, hr3=0.02, hmin1=0.10, hmin3=0.10,
                               tr1=0.0258, tr3=0.0258)
     ds = simulate(g, Sine(amplitude=0.27, omega=30.0, duration=1.0), model="stick_slip", dt=0.001)
-    ds.to_netcdf("dfp1.nc")
+    from dccss.files import write_netcdf
+    write_netcdf(ds, "dfp1.nc")  # as ``dccss run`` writes it (CF-compliant; atomic)
     # bidirectional: the same sine along 30 degrees, or a record pair / time, x, y table
     from dccss import Oriented
     ds3 = simulate(g, Oriented(Sine(0.2, 6.28, 2.0), 30.0), model="stick_slip", dt=0.005)
@@ -19,11 +23,13 @@ Typical use::
 Layout (imports flow downwards only):
 
 * ``mechanics/`` - the model (nothing above it is imported): ``geometry``, ``kinematics``,
-  ``newton``, ``models`` (the steppers and the registry of models), ``capacity``
-  (the retaining rings and their errors), ``summaries`` (the per-case reductions of a sweep),
-  ``compiled`` (the planar steppers compiled with Numba), ``backend`` (which of the two runs),
-  ``spatial`` (both models in space, for bidirectional ground motion, compiled) and ``runs`` (the
-  one driver: planar or spatial, the backend, the capacity and failure policies);
+  ``newton``, ``linear`` (the 4 x 4 solve and determinants), ``registry`` and ``models`` (the models
+  as registry entries, written once as kernels), ``scalar`` (how kernels compile and are cached),
+  ``capacity`` (the retaining rings and their errors), ``summaries`` (the per-case reductions of a
+  sweep), ``compiled`` (the planar kernels' helpers and driver, compiled with Numba or interpreted),
+  ``backend`` (which of the two runs), ``spatial`` (both models in space, for bidirectional ground
+  motion), ``structure`` (the isolated structure's response) and ``runs`` (the one driver: planar or
+  spatial, the backend, the capacity and failure policies);
 * top level - one case in, one dataset out: ``excitation`` and ``records`` (X_g(t)), ``results``
   (CF datasets), ``simulation``, ``checks``/``schema``/``case``/``cli`` (input checks, JSON Schemas,
   case files, ``dccss run``/``animate``), ``files`` (atomic writes), ``drawing`` (figures and the

@@ -26,7 +26,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     ----------
     geometry : Geometry
         The device (scalar fields).
-    excitation : Sine, Table, Record, RecordPair, Oriented, Scaled or PlaneTable
+    excitation : Sine, Table, PlaneTable, Record, RecordPair, or one of them Oriented, Scaled or a Component
         The ground motion: one component runs the planar models, two the spatial ones.
     model : str
         A model of the registry: 'compliant' or 'stick_slip'.
@@ -181,16 +181,28 @@ def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="
                         f"(degrees), got {'both' if theta2_0 is not None else 'neither'}")
     if dXg is None:
         raise TypeError("breakaway() needs the ground step dXg (m)")
+    if not isinstance(geometry, Geometry) or np.ndim(geometry.L) != 0:
+        raise TypeError(f"geometry must be a Geometry of scalar fields (one device), got {type(geometry).__name__}")
     key = "theta2_0" if theta2_0_deg is None else "theta2_0_deg"
-    grid = np.atleast_1d(np.asarray(theta2_0 if theta2_0_deg is None else theta2_0_deg, dtype=float))
+    try:
+        grid = np.atleast_1d(np.asarray(theta2_0 if theta2_0_deg is None else theta2_0_deg, dtype=float))
+        steps = np.asarray(dXg, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{key} and dXg must be numbers or 1-D arrays of numbers, got {key} = "
+                         f"{theta2_0 if theta2_0_deg is None else theta2_0_deg!r}, dXg = {dXg!r}") from None
     if grid.ndim != 1 or grid.size == 0:
         raise ValueError(f"{key} must be a non-empty 1-D grid of initial pad rotations")
+    if theta2_0_deg is not None and not np.all(np.abs(grid) < 90.0):  # named in the unit it was given in
+        raise ValueError(f"theta2_0_deg must be finite angles within (-90, 90) degrees, got "
+                         f"{float(grid[~(np.abs(grid) < 90.0)][0])!r}")
     theta2_0 = grid if theta2_0_deg is None else np.radians(grid)
     runs.check_start(theta2_0)
-    steps = np.asarray(dXg, dtype=float)
     if steps.ndim > 1 or steps.size == 0 or not np.all(np.isfinite(steps)):
         raise ValueError(f"dXg must be a finite number or a non-empty 1-D array, got {dXg!r}")
     sizes = np.atleast_1d(steps)
+    if np.any(np.abs(sizes) >= geometry.L):
+        raise ValueError(f"dXg: a step of {float(sizes[np.abs(sizes) >= geometry.L][0]):g} m moves RB1 from RB3 by the "
+                         f"pendulum length L = {float(geometry.L):.4g} m or more: no compatible configuration exists")
     Xg = np.zeros((2, sizes.size, theta2_0.size))
     Xg[1] = sizes[:, None]
     history = models.run("compliant", geometry, Xg, theta2_0, normals=normals, options=options)

@@ -131,3 +131,14 @@ def test_every_bad_parameter_is_named_at_once():
     for part in ("'R1' is a length and must be > 0 m, got -3", "'h2' is a length and must be > 0 m, got -0.1",
                  "'alpha1' must lie in 0 < alpha1 < 90 deg, got 100 deg", "got -12 deg"):
         assert part in msg
+
+
+@pytest.mark.parametrize("key, value", [("R1", None), ("R1", "1.0"), ("R1", True), ("alpha1", "21"),
+                                        ("alpha21", None)])
+def test_a_parameter_that_is_not_a_number_is_named(key, value):
+    """None read as "must be finite, got nan", and "1.0" or True were taken as numbers, unlike a sine's or a
+    structure's numbers."""
+    from dccss.paper.prototypes import TABLE1
+
+    with pytest.raises(ValueError, match=f"geometry parameter '{key}' must be a number, got {value!r}"):
+        Geometry.from_degrees(**{**TABLE1["DFP1"], key: value})

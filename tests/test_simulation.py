@@ -159,3 +159,17 @@ def test_a_step_that_does_not_divide_the_duration_is_warned_about():
                                          r"history ends at t = 0.9 s, 0.1 s before the motion does"):
         ds = simulate(DFP1, Sine(0.1, 6.0, 1.0), dt=0.3)
     assert ds["t"].values[-1] == pytest.approx(0.9)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(theta2_0_deg=95.0, dXg=0.01), r"theta2_0_deg must be finite angles within \(-90, 90\) degrees, got 95.0"),
+    (dict(theta2_0_deg=[1.0, 2.0], dXg="x"), "theta2_0_deg and dXg must be numbers"),
+    (dict(theta2_0_deg=[1.0, 2.0], dXg=2.0), r"dXg: a step of 2 m moves RB1 from RB3 by the pendulum length L"),
+])
+def test_breakaway_names_its_arguments(kw, message):
+    """Before: theta2_0_deg = 95 was reported as theta2_0 in radians, a string dXg as numpy's conversion
+    error, and a step beyond L as a Newton failure advising to reduce dt (breakaway has none)."""
+    with pytest.raises(ValueError, match=message):
+        breakaway(DFP1, **kw)
+    with pytest.raises(TypeError, match="geometry must be a Geometry"):
+        breakaway({"R1": 1.0}, theta2_0_deg=[1.0], dXg=0.01)

@@ -85,6 +85,10 @@ class Geometry:
         problems = []  # every mistake at once, each naming its parameter
         for f in fields(self):
             value = getattr(self, f.name)
+            kind = np.asarray(value).dtype.kind if not isinstance(value, (str, bytes)) else "U"
+            if value is None or kind not in "iuf":  # None, strings, booleans: not numbers (float() takes them)
+                problems.append(f"geometry parameter {f.name!r} must be a number, got {value!r}")
+                continue
             try:
                 arr = np.asarray(value, dtype=float)
             except (TypeError, ValueError):
@@ -137,7 +141,7 @@ class Geometry:
             raise ValueError(f"missing geometry parameter(s) {missing}")
         converted = {}
         for key, value in params.items():
-            if key in ANGLES:
+            if key in ANGLES and value is not None and not isinstance(value, (str, bytes, bool)):
                 try:
                     value = np.radians(np.asarray(value, dtype=float))
                 except (TypeError, ValueError):
