@@ -40,8 +40,8 @@ from .files import write_atomic
 from .mechanics.kinematics import CORNERS, Q_NAMES, interpenetration
 from .mechanics.models import REGISTRY
 from .mechanics.newton import NewtonOptions
-from .results import MODEL_TITLES, geometry_from_attrs, has_structure
-from .viewer import DPI, FIGSIZE, AnimationError, is_real, open_result, run_command, run_notes  # noqa: F401
+from .results import MODEL_TITLES, failure_of, geometry_from_attrs, has_structure
+from .viewer import DPI, FIGSIZE, AnimationError, events, is_real, open_result, run_command, run_notes  # noqa: F401
 
 FORMATS = (".gif", ".html", ".mp4")
 MAX_FPS = 50  # GIF delays are whole hundredths of a second, and viewers slow down delays below 0.02 s
@@ -378,15 +378,11 @@ class Scene:
                         ncols=len(handles), fontsize=8, frameon=False, handlelength=2.2, columnspacing=1.6)
 
     def _events(self, ax):
-        """Dashed lines at the capacity exceedance and the solver failure; their (label, colour)."""
+        """Dashed lines at the history's events (``viewer.events``) within the traces; their (label, colour)."""
         attrs, (lo, hi) = self.ds.attrs, ax.get_xlim()
         drawn = []
-        for key, colour, label in (("capacity_exceeded_at_s", "tab:orange", "pad reaches a ring"),
-                                   ("failure_time_s", "tab:red", "solver failure")):
-            value = attrs.get(key)
-            if key == "failure_time_s" and (not int(attrs.get("failed", 0)) or attrs.get("failure_kind") == "capacity"):
-                continue  # a ring reached under capacity "error" is the ring's line
-            if is_real(value) and lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
+        for value, colour, label in events(attrs):
+            if lo <= value <= hi + 2 * float(attrs.get("dt_s", 0.0)):
                 ax.axvline(value, color=colour, ls="--", lw=1.0)
                 if value >= hi:  # at or after the last step: off the right spine, where it would not show
                     hi = value + 0.01 * (hi - lo)
@@ -523,7 +519,7 @@ class Scene:
         if "capacity_exceeded" in self.ds and int(self.ds["capacity_exceeded"].values[n]):
             flags.append("pad beyond a retaining ring")
         if int(self.ds.attrs.get("failed", 0)) and n == self.t.size - 1:
-            flags.append("the ring ends the run (capacity: error)" if self.ds.attrs.get("failure_kind") == "capacity"
+            flags.append("the ring ends the run (capacity: error)" if failure_of(self.ds.attrs) == "capacity"
                          else "last converged step: the solver failed on the next")
         if self.stick and sticking is None:
             flags.append("no sticking phase at the first step")

@@ -156,7 +156,6 @@ def _excitation(value, kind, base, geometry, key):
         scale = problems.check("scale", number, value["scale"], f"{key}.scale") if "scale" in value else None
         problems.raise_if_any()
         excitation = Sine(amplitude, omega, duration)
-        return _oriented(excitation if scale is None else Scaled(excitation, scale), azimuth, key)
     else:
         if not isinstance(value["file"], str):
             raise CaseError(f"{key}.file: expected a path string, got {value['file']!r}")
@@ -167,9 +166,8 @@ def _excitation(value, kind, base, geometry, key):
         if azimuth is not None and excitation.components != 1:
             raise CaseError(f"{key}.azimuth: the table {value['file']!r} has two components (columns time, x, y) "
                             f"already; azimuth orients a one-component table (time, displacement): remove it")
-    if "scale" in value:
-        excitation = Scaled(excitation, number(value["scale"], f"{key}.scale"))
-    return _oriented(excitation, azimuth, key)
+        scale = number(value["scale"], f"{key}.scale") if "scale" in value else None
+    return _oriented(excitation if scale is None else Scaled(excitation, scale), azimuth, key)
 
 
 def _amplitude(value, key):
@@ -194,7 +192,7 @@ def record_from(value, base: Path, key="excitation"):
     """A Record (a ground-motion file processed to displacement), or a RecordPair when ``file`` is
     a list of two files [x, y], from its mapping; ``units`` states the units of the files' motion
     when a file does not."""
-    from .records import BASELINES, Record, RecordPair, units_from
+    from .records import BASELINES, Record, RecordPair, WindowError, units_from
 
     file = value["file"]
     if isinstance(file, list):
@@ -239,14 +237,7 @@ def record_from(value, base: Path, key="excitation"):
                                              baseline=baseline, units=units, rotation=rotation)
             return Record.from_file(base / file, scale=factor, window=cut, baseline=baseline, units=units)
         except ValueError as err:
-            where = "file"
-            if cut is not None:  # the file reads without the window: the window is wrong
-                try:
-                    read(factor, None)
-                    where = "window"
-                except CaseError:
-                    pass
-            raise CaseError(f"{key}.{where}: {err}") from None
+            raise CaseError(f"{key}.{'window' if isinstance(err, WindowError) else 'file'}: {err}") from None
 
     if spectral is None:
         return read(scale)

@@ -35,6 +35,7 @@ from .mechanics.capacity import CapacityError
 from .mechanics.newton import ConvergenceError
 from .mechanics.scalar import log as kernels_log
 from .mechanics.structure import G
+from .results import failure_of
 from .schema import schema
 
 #: what ``dccss run -o OUT`` writes, by the suffix of OUT
@@ -114,10 +115,10 @@ def warnings_of(ds) -> list[str]:
     if "stopped_at_s" in a:
         out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "
                    f"({ds.sizes['t'] - 1} steps written)")
-    if a.get("failed") and a.get("failure_kind") == "capacity":
+    if failure_of(a) == "capacity":
         out.append(f"capacity: error ended the history at the ring, t = {a['failure_time_s']:.6g} s, marked failed "
                    f"(on_failure: mark): {a['failure_message']}")
-    elif a.get("failed"):
+    elif failure_of(a) == "solver":
         out.append(f"the solver failed at t = {a['failure_time_s']:.6g} s; the history is written up to the "
                    f"last converged step (on_failure: mark): {a['failure_message']}")
     return out

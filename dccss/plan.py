@@ -249,27 +249,17 @@ def figure(ds, at=None, title=None):
     return fig
 
 
-#: the events of a history drawn on its traces: attribute -> (colour, label)
-EVENTS = {"capacity_exceeded_at_s": ("tab:orange", "pad reaches a ring"), "stopped_at_s": ("0.3", "run stopped"),
-          "failure_time_s": ("tab:red", "solver failure")}
-
-
 def draw_events(ax, attrs):
-    """Dashed lines at the history's events (EVENTS): the ring, a stop, a solver failure (not the failure
-    that capacity "error" marks at the ring, whose line is the ring's)."""
+    """Dashed lines at the history's events (``viewer.events``: the ring, a solver failure; a stop is at
+    the ring), the time axis extended to them."""
+    from .viewer import events
+
     lo, hi = ax.get_xlim()
-    drawn = False
-    for key, (colour, label) in EVENTS.items():
-        value = attrs.get(key)
-        if key == "failure_time_s" and (not int(attrs.get("failed", 0)) or attrs.get("failure_kind") == "capacity"):
-            continue
-        if key == "stopped_at_s" and value == attrs.get("capacity_exceeded_at_s"):
-            continue  # stopped where the ring is reached: one line
-        if value is not None and np.isfinite(value):
-            ax.axvline(value, color=colour, ls="--", lw=1.0, label=label)
-            hi, drawn = max(hi, float(value)), True
-    if drawn:
-        ax.set_xlim(lo, hi)
+    found = events(attrs)
+    for value, colour, label in found:
+        ax.axvline(value, color=colour, ls="--", lw=1.0, label=label)
+    if found:
+        ax.set_xlim(lo, max(hi, *(value for value, _, _ in found)))
 
 
 def caption(ds, v: View) -> str:

@@ -152,6 +152,10 @@ _HEADER_TOKEN = re.compile(r"[^\s(\[]+(?:\s*[(\[][^)\]]*[)\]])?|[(\[][^)\]]*[)\]
 _SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
 
 
+class WindowError(ValueError):
+    """A record's window lies outside it (the file itself reads)."""
+
+
 class RecordWarning(UserWarning):
     """A record that reads without error but looks wrong (an implausible peak ground acceleration)."""
 
@@ -656,7 +660,7 @@ def _window(time, window, source):
         raise ValueError(f"record {source!r}: window ({t0!r}, {t1!r}) s must be finite with t0 < t1")
     tol = _SNAP * float(np.min(np.diff(time)))
     if t0 < time[0] - tol or t1 > time[-1] + tol:
-        raise ValueError(f"record {source!r}: window ({t0!r}, {t1!r}) s lies outside the record, "
+        raise WindowError(f"record {source!r}: window ({t0!r}, {t1!r}) s lies outside the record, "
                          f"which spans {float(time[0])!r} to {float(time[-1])!r} s")
     return slice(int(np.searchsorted(time, t0 - tol, side="left")),
                  int(np.searchsorted(time, t1 + tol, side="right")))

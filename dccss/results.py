@@ -254,6 +254,14 @@ def structure_variables(response, components, steps) -> dict:
     return out
 
 
+def failure_of(attrs) -> str | None:
+    """What marked a history failed (its ``failed`` attribute): "solver", or "capacity" for a ring reached
+    under capacity 'error' (``failure_kind``); None where it did not fail."""
+    if not int(attrs.get("failed", 0)):
+        return None
+    return attrs.get("failure_kind", "solver")
+
+
 def has_structure(ds) -> bool:
     """Whether a dccss dataset holds a history driven by an isolated structure (a stroke)."""
     return "structure_friction" in ds.attrs

@@ -78,7 +78,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     A solver failure after the pad has passed a retaining ring says so first: beyond the ring
     the model describes no real device, and a smaller dt does not help.
     """
-    _check_arguments(geometry, excitation, theta2_0, options, structure)
+    _check_arguments(geometry, excitation, theta2_0, structure)  # options: runs.history checks them
     times = step_times(excitation, dt)
     left = excitation.t_end - times[-1]
     if left > 1e-9 * float(dt):
@@ -121,7 +121,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     return ds
 
 
-def _check_arguments(geometry, excitation, theta2_0, options, structure):
+def _check_arguments(geometry, excitation, theta2_0, structure):
     """A TypeError or ValueError names an argument of ``simulate`` that is not what it takes."""
     if not isinstance(geometry, Geometry):
         raise TypeError(f"geometry must be a Geometry (e.g. Geometry.from_degrees(...) or a Table 1 prototype), got "
@@ -134,8 +134,6 @@ def _check_arguments(geometry, excitation, theta2_0, options, structure):
     if isinstance(theta2_0, (bool, str)) or np.ndim(theta2_0) != 0 or not isinstance(
             np.asarray(theta2_0).item(), (int, float)):
         raise TypeError(f"theta2_0 must be a number (rad), got {type(theta2_0).__name__} {theta2_0!r:.80}")
-    if not isinstance(options, NewtonOptions):
-        raise TypeError(f"options must be a NewtonOptions, got {type(options).__name__} {options!r:.80}")
     if structure is not None and not isinstance(structure, Structure):
         raise TypeError(f"structure must be a Structure (e.g. Structure(friction=0.05)) or None, got "
                         f"{type(structure).__name__} {structure!r:.80}")

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .mechanics.kinematics import Q_NAMES
-from .results import MODEL_TITLES, geometry_from_attrs
+from .results import MODEL_TITLES, failure_of, geometry_from_attrs
 
 #: the size of an animation's frames (inches, dots per inch)
 FIGSIZE, DPI = (11.0, 7.2), 100
@@ -70,12 +70,24 @@ def is_real(value) -> bool:
             and math.isfinite(value))
 
 
+#: the events of a history drawn on its time traces: (attribute, colour, label)
+EVENTS = (("capacity_exceeded_at_s", "tab:orange", "pad reaches a ring"),
+          ("failure_time_s", "tab:red", "solver failure"))
+
+
+def events(attrs) -> list:
+    """(time, colour, label) of a history's events: the ring it reached and the solver's failure (not the
+    failure that capacity 'error' marks at the ring, whose line is the ring's)."""
+    return [(float(attrs[key]), colour, label) for key, colour, label in EVENTS
+            if is_real(attrs.get(key)) and (key != "failure_time_s" or failure_of(attrs) == "solver")]
+
+
 def run_notes(attrs):
     """The events of the run, for the foot of every frame: solver failure, capacity exceedance, stop."""
     notes = []
-    if int(attrs.get("failed", 0)) and attrs.get("failure_kind") == "capacity":
+    if failure_of(attrs) == "capacity":
         notes.append("capacity: error ended the run at the ring, marked failed (on_failure: mark).")
-    elif int(attrs.get("failed", 0)):
+    elif failure_of(attrs) == "solver":
         when = attrs.get("failure_time_s")
         note = "The solver failed" + (f" at t = {when:g} s" if is_real(when) else "")
         note += ": the data end at the last converged step."

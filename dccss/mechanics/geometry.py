@@ -89,11 +89,7 @@ class Geometry:
             if value is None or kind not in "iuf":  # None, strings, booleans: not numbers (float() takes them)
                 problems.append(f"geometry parameter {f.name!r} must be a number, got {value!r}")
                 continue
-            try:
-                arr = np.asarray(value, dtype=float)
-            except (TypeError, ValueError):
-                problems.append(f"geometry parameter {f.name!r} must be a number, got {value!r}")
-                continue
+            arr = np.asarray(value, dtype=float)
             object.__setattr__(self, f.name, arr if arr.ndim else float(arr))
             bad = ~np.isfinite(arr)
             if bad.any():

@@ -32,7 +32,7 @@ from matplotlib.transforms import ScaledTranslation
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
 from ..mechanics.summaries import model_specific
-from ..results import MODEL_TITLES, has_structure
+from ..results import MODEL_TITLES, failure_of, has_structure
 from .spec import layout
 
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
@@ -355,7 +355,7 @@ def _events(ds):
     if "capacity_exceeded_at_s" in ds.attrs:
         out.append(("capacity", float(ds.attrs["capacity_exceeded_at_s"]),
                     f"{ds.attrs.get('capacity_exceeded_plate', '')} ring".strip()))
-    if _failed(ds) and ds.attrs.get("failure_kind") != "capacity":  # capacity "error": the ring's event ended it
+    if _failed(ds) and failure_of(ds.attrs) != "capacity":  # capacity "error": the ring's event ended it
         out.append(("failure", float(ds.attrs.get("failure_time_s", ds["t"].values[-1])), "failed"))
     return out
 
@@ -372,7 +372,7 @@ def _notes(ds, model):
     stop = _stop_time(ds)
     if stop is not None:
         parts.append(f"history cut at {stop:.4g} s (capacity policy 'stop')")
-    if _failed(ds) and ds.attrs.get("failure_kind") == "capacity":
+    if _failed(ds) and failure_of(ds.attrs) == "capacity":
         parts.append("history ended there, marked failed (capacity policy 'error')")
     elif _failed(ds):
         time = float(ds.attrs.get("failure_time_s", ds["t"].values[-1]))
