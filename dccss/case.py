@@ -14,7 +14,9 @@ Format (lengths in m, angles in degrees, times in s)::
                 #     in a header or in `units`; see dccss.records)
                 # any kind takes `scale: factor`; a record also `scale: {to: spectral_acceleration,
                 #   period: T, damping: 0.05, target: Sa}` (g): scaled so that its Sa(T) is the target
-                #   (a pair's RotD50, or `definition: geometric_mean`; dccss.spectra)
+                #   (a pair's RotD50, or `definition: geometric_mean`; dccss.spectra), or `scale: {to:
+                #   spectrum, target: spectrum.csv, periods: [T_low, T_high], fraction: 1.0}`: over a
+                #   period range, as codes scale a suite (a record alone is a suite of one)
                 # Bidirectional ground motion (two horizontal components x, y):
                 # - any of the above with `azimuth: 30.0` (degrees from +x towards +y): the motion
                 #   applied along that direction, X(t) (cos az, sin az); without it, one component
@@ -239,10 +241,27 @@ def record_from(value, base: Path, key="excitation"):
         except ValueError as err:
             raise CaseError(f"{key}.{'window' if isinstance(err, WindowError) else 'file'}: {err}") from None
 
+    def whole(factor):
+        """The record before its window (for its spectrum): a pair's components where both have samples."""
+        try:
+            return read(factor, None)
+        except CaseError:
+            if not isinstance(file, list) or window is None:
+                raise
+            try:  # components of different lengths, which the window cuts to the same times
+                x, y = (Record.from_file(base / f, baseline=baseline, units=units) for f in file)
+            except ValueError:
+                raise CaseError(f"{key}.file: the pair's files cannot be read") from None
+            return read(factor, (max(x.t_start, y.t_start), min(x.t_end, y.t_end)))
+
     if spectral is None:
         return read(scale)
     # the spectrum is the whole record's (as its processing), the scaled record then windowed
-    return _scaled_to_spectrum(read(scale, None), read, spectral, isinstance(file, list), f"{key}.scale")
+    if spectral.get("to") == "spectrum":
+        identity = (tuple(str(base / f) for f in (file if isinstance(file, list) else [file])), baseline, units,
+                    rotation, window)
+        return _scaled_over_range(identity, read, whole, spectral, isinstance(file, list), f"{key}.scale", base)
+    return _scaled_to_spectrum(whole(scale), read, spectral, isinstance(file, list), f"{key}.scale")
 
 
 def _scaled_to_spectrum(record, read, spec, pair, key):
@@ -251,8 +270,8 @@ def _scaled_to_spectrum(record, read, spec, pair, key):
     from .records import G
     from .spectra import PAIR_DEFINITIONS, spectral_acceleration
 
+    choice(spec.get("to"), f"{key}.to", ("spectral_acceleration", "spectrum"))
     check_keys(spec, key, ("to", "period", "target"), ("damping", "definition"))
-    choice(spec["to"], f"{key}.to", ("spectral_acceleration",))
     period = number(spec["period"], f"{key}.period", positive=True)
     target = number(spec["target"], f"{key}.target", positive=True)
     damping = number(spec.get("damping", 0.05), f"{key}.damping")
@@ -275,6 +294,133 @@ def _scaled_to_spectrum(record, read, spec, pair, key):
                       "record_scaling_damping": damping, "record_sa_unscaled_g": unscaled / G,
                       **({"record_scaling_definition": definition} if pair else {})}
     return scaled
+
+
+def _scaled_over_range(identity, read, whole, spec, pair, key, base):
+    """The record read again (windowed, if it is) at the factor that scales it over a period range
+    (``dccss.spectra.suite_factors``): its own fit to the target times the suite's factor
+    (``suite_factor``; without it the record is a suite of one, scaled so that its spectrum is
+    nowhere in the range below ``fraction`` × target). ``identity``: the files and processing whose
+    spectrum is computed (once per process); ``whole(factor)``: the record before its window."""
+    from .records import G
+    from .spectra import PAIR_DEFINITIONS, range_periods, suite_factors
+
+    check_keys(spec, key, ("to", "target", "periods"),
+               ("damping", "definition", "fraction", "individual", "suite_factor"))
+    problems = Problems(spec)
+    table = problems.check("target", _target_spectrum, spec["target"], f"{key}.target", base)
+    periods = problems.check("periods", _period_range, spec["periods"], f"{key}.periods")
+    damping = problems.check("damping", number, spec.get("damping", 0.05), f"{key}.damping")
+    if damping is not None and not 0 <= damping < 1:
+        problems.add("damping", f"{key}.damping: {damping!r} is outside 0 <= damping < 1")
+    definition = problems.check("definition", choice, spec.get("definition", "rotd50"), f"{key}.definition",
+                                PAIR_DEFINITIONS)
+    if not pair and "definition" in spec:
+        problems.add("definition", f"{key}.definition: says how a pair's spectral acceleration is taken; this record "
+                                   f"has one component")
+    fraction = problems.check("fraction", number, spec.get("fraction", 1.0), f"{key}.fraction", positive=True)
+    individual = spec.get("individual", True)
+    if not isinstance(individual, bool):
+        problems.add("individual", f"{key}.individual: expected true (each record fitted to the target first) or "
+                                   f"false (one factor for the whole suite), got {individual!r}")
+    suite = spec.get("suite_factor")
+    if suite is not None:
+        suite = problems.check("suite_factor", number, suite, f"{key}.suite_factor", positive=True)
+    if table is not None and periods is not None and not table[0][0] <= periods[0] < periods[1] <= table[0][-1]:
+        problems.add("periods", f"{key}.periods: the range {list(periods)} s is not within the target's periods "
+                                f"{table[0][0]:g} to {table[0][-1]:g} s")
+    problems.raise_if_any()
+    grid = range_periods(*periods, table[0])
+    unscaled = _range_spectrum(identity, tuple(grid), damping, definition, key, whole)
+    target = np.interp(grid, *table) * G
+    if not (unscaled > 0).all():
+        raise CaseError(f"{key}: the record's spectral acceleration is {unscaled.min()!r} at a period of the range: it "
+                        f"cannot be scaled to a target")
+    factors, fitted, own = suite_factors(unscaled[None], target, fraction, individual)
+    if suite is None:
+        suite, factor = own, float(factors[0])
+    else:
+        factor = suite * float(fitted[0])  # as suite_factors does
+    scaled = read(factor)
+    scaled.scaling = {"record_scaled_to": "spectrum", "record_scaling_periods_s": np.array(periods),
+                      "record_scaling_damping": damping, "record_scaling_fraction": fraction,
+                      "record_scaling_fit": float(fitted[0]), "record_scaling_suite_factor": suite,
+                      **({"record_scaling_definition": definition} if pair else {})}
+    scaled.spectrum = {"periods": grid, "unscaled": unscaled, "target": target}  # m/s²
+    return scaled
+
+
+#: the spectra of records over a period range, by the record's files and processing and the range
+_SPECTRA = {}
+
+
+def _range_spectrum(identity, grid, damping, definition, key, whole):
+    """The whole record's (unwindowed, unscaled) spectrum (m/s²) at the periods ``grid``, computed once
+    per process (a study reads a suite's records twice: on their own, then with the suite's factor)."""
+    from .spectra import spectrum
+
+    files = identity[0]
+    stamp = tuple((Path(f).stat().st_mtime_ns, Path(f).stat().st_size) for f in files if Path(f).exists())
+    cache = (identity, stamp, grid, damping, definition)
+    if cache not in _SPECTRA:
+        record = whole(1.0)
+        duration = record.t_end - record.t_start
+        if grid[-1] > duration:
+            raise CaseError(f"{key}.periods: {grid[-1]:g} s is longer than the record ({duration:g} s): an oscillator "
+                            f"of that period has not completed one cycle of response; give periods within the record")
+        _SPECTRA[cache] = spectrum(record, grid, damping, definition)
+    return _SPECTRA[cache]
+
+
+def _period_range(value, key):
+    """[T_low, T_high] (s), 0 < T_low < T_high."""
+    if not isinstance(value, list) or len(value) != 2:
+        raise CaseError(f"{key}: expected the period range [T_low, T_high] in s, got {value!r}")
+    low, high = (number(v, key, positive=True) for v in value)
+    if not low < high:
+        raise CaseError(f"{key}: expected T_low < T_high, got {value!r}")
+    return low, high
+
+
+def _target_spectrum(value, key, base):
+    """The target spectrum (periods in s, increasing; Sa in g): a mapping {period: [...], sa: [...]} or a
+    text file of two columns, period (s) and Sa (g), comma- or space-separated, with an optional header
+    line and # comments; straight lines between its points."""
+    if isinstance(value, str):
+        try:
+            lines = (base / value).read_text().splitlines()
+        except OSError as err:
+            raise CaseError(f"{key}: cannot read the target spectrum {value!r}: {err.strerror}") from None
+        rows = [line.split("#")[0].replace(",", " ").split() for line in lines]
+        rows = [r for r in rows if r]
+        if rows and not _numeric(rows[0]):
+            rows = rows[1:]  # a header
+        if not rows or any(len(r) != 2 or not _numeric(r) for r in rows):
+            raise CaseError(f"{key}: {value!r} is not a table of two columns, period (s) and Sa (g), one row per "
+                            f"period")
+        periods, sa = np.array(rows, dtype=float).T
+    elif isinstance(value, dict):
+        check_keys(value, key, ("period", "sa"))
+        if not all(isinstance(value[k], list) for k in ("period", "sa")) or len(value["period"]) != len(value["sa"]):
+            raise CaseError(f"{key}: expected lists period (s) and sa (g) of the same length, got {value!r}")
+        periods = np.array([number(v, f"{key}.period") for v in value["period"]])
+        sa = np.array([number(v, f"{key}.sa") for v in value["sa"]])
+    else:
+        raise CaseError(f"{key}: expected a file of periods (s) and Sa (g), or {{period: [...], sa: [...]}}, got "
+                        f"{value!r}")
+    if len(periods) < 2 or not (periods > 0).all() or not (np.diff(periods) > 0).all():
+        raise CaseError(f"{key}: the periods must be at least two, > 0 and increasing, got {periods.tolist()}")
+    if not (np.isfinite(sa) & (sa > 0)).all():
+        raise CaseError(f"{key}: every Sa must be a number > 0 (g), got {sa.tolist()}")
+    return periods, sa
+
+
+def _numeric(row):
+    try:
+        [float(v) for v in row]
+    except ValueError:
+        return False
+    return True
 
 
 @dataclass

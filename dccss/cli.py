@@ -67,6 +67,11 @@ def _record(a) -> str:
                       f"PGD = {100 * a[p + 'pgd_m']:.3g} cm" for label, p in parts)
     scaled = (f": Sa(T = {a['record_scaling_period_s']:g} s, {100 * a['record_scaling_damping']:g} %) = "
               f"{a['record_scaled_to_sa_g']:g} g" if "record_scaled_to_sa_g" in a else "")
+    if a.get("record_scaled_to") == "spectrum":
+        low, high = a["record_scaling_periods_s"]
+        scaled = (f": its spectrum over {low:g}-{high:g} s ({100 * a['record_scaling_damping']:g} %) at or above "
+                  f"{a['record_scaling_fraction']:g} x target; fit {a['record_scaling_fit']:.4g}, suite factor "
+                  f"{a['record_scaling_suite_factor']:.4g}")
     return f"; record {peaks} (scale {a[parts[0][1] + 'scale']:g}{scaled})"
 
 

@@ -300,6 +300,13 @@ def _times(ground: Ground, factor) -> Ground:
     return Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
 
 
+def underlying(excitation):
+    """The excitation a wrapper (``Component``, ``Oriented``, ``Scaled``) is built on (itself if none)."""
+    while isinstance(excitation, _Wrapper):
+        excitation = excitation.excitation
+    return excitation
+
+
 class _Wrapper:
     """An excitation built on another (``self.excitation``): its kind and time span are the inner one's."""
 

@@ -17,6 +17,11 @@ reports), ``percentile=100`` RotD100, the largest (the maximum-direction spectru
 the response to a component rotated by θ is cos θ u_x + sin θ u_y, so the two responses are
 computed once. ``geometric_mean`` is the geometric mean of the two as-recorded components' PSA
 (older practice).
+
+Codes scale a suite over a period range rather than at one period: ``suite_factors`` fits each record
+to the target spectrum over the range, then scales the whole suite by the least factor that keeps
+its mean spectrum at or above a fraction of the target at every period of the range
+(``range_periods``).
 """
 
 from __future__ import annotations
@@ -28,6 +33,9 @@ from .mechanics.structure import G, Ground, solve
 #: the definitions of a pair's spectral acceleration that ``scale_factor`` knows
 PAIR_DEFINITIONS = ("rotd50", "rotd100", "geometric_mean")
 ORIENTATIONS = np.radians(np.arange(180.0))  # 1° steps, as NGA-West2
+#: log-spaced periods a scaling over a period range checks, per decade of the range and at least (with
+#: the target's own periods in it; NGA-West2's standard periods are about 25 per decade)
+PER_DECADE, LEAST_POINTS = 50, 20
 
 
 def _check(period, damping):
@@ -81,3 +89,32 @@ def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50")
         return float(np.sqrt(psa(x.time, x.acceleration, period, damping) * psa(y.time, y.acceleration, period,
                                                                                damping)))
     raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
+
+
+def spectrum(excitation, periods, damping=0.05, definition="rotd50") -> np.ndarray:
+    """``spectral_acceleration`` (m/s²) of ``excitation`` at each of ``periods`` (s)."""
+    return np.array([spectral_acceleration(excitation, float(T), damping, definition) for T in periods])
+
+
+def range_periods(low, high, table=()) -> np.ndarray:
+    """The periods (s) a scaling over [low, high] checks: log-spaced from low to high (PER_DECADE, at least
+    LEAST_POINTS) and the target's own periods ``table`` inside the range (where its straight pieces bend)."""
+    table = np.asarray(table, dtype=float)
+    num = max(LEAST_POINTS, int(np.ceil(PER_DECADE * np.log10(high / low))) + 1)
+    return np.unique(np.concatenate([np.geomspace(low, high, num), table[(table > low) & (table < high)]]))
+
+
+def suite_factors(spectra, target, fraction=1.0, individual=True):
+    """Amplitude scale factors of a suite of records over a period range, as codes scale them.
+
+    ``spectra`` (R, P): each record's spectral acceleration at the range's P periods; ``target`` (P,):
+    the target spectrum there (the same units). With ``individual``, each record is first fitted to
+    the target on its own: its factor is the geometric mean of target / Sa over the periods (the
+    least-squares fit of log Sa); then one factor for the whole suite, the smallest that keeps the
+    suite's mean spectrum at or above ``fraction`` × target at every period (where it is closest it
+    touches it). Returns (the records' factors (R,), their own fits (R,), the suite's factor)."""
+    spectra, target = np.asarray(spectra, dtype=float), np.asarray(target, dtype=float)
+    fitted = np.exp(np.mean(np.log(target / spectra), axis=1)) if individual else np.ones(len(spectra))
+    mean = np.mean(fitted[:, None] * spectra, axis=0)
+    suite = float(np.max(fraction * target / mean))
+    return suite * fitted, fitted, suite

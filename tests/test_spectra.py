@@ -83,7 +83,8 @@ def test_a_record_scaled_to_a_spectral_acceleration_has_it(file, definition):
     ({"to": "spectral_acceleration", "period": 1.0, "target": -0.4}, r"excitation\.scale\.target: must be > 0"),
     ({"to": "spectral_acceleration", "period": 100.0, "target": 0.4},
      r"excitation\.scale\.period: 100 s is longer than the record \(19\.99 s\)"),
-    ({"to": "pga", "period": 1.0, "target": 0.4}, r"excitation\.scale\.to: must be one of \['spectral_acceleration'\]"),
+    ({"to": "pga", "period": 1.0, "target": 0.4},
+     r"excitation\.scale\.to: must be one of \['spectral_acceleration', 'spectrum'\]"),
     ({"to": "spectral_acceleration", "period": 1.0}, r"excitation\.scale: missing key\(s\) \['target'\]"),
     ({"to": "spectral_acceleration", "period": 1.0, "target": 0.4, "damping": 1.0},
      r"excitation\.scale\.damping: 1\.0 is outside"),
@@ -131,3 +132,109 @@ def test_spectral_acceleration_names_a_bad_definition_or_excitation():
         spectra.spectral_acceleration(x, 1.0, definition="bogus")  # ignored for one component before
     with pytest.raises(TypeError, match="excitation must be a Record or a RecordPair"):
         spectra.spectral_acceleration(Sine(0.1, 6.0, 1.0), 1.0)
+
+
+# --- scaling over a period range -----------------------------------------------------------------
+def test_suite_factors_keep_the_mean_at_the_target_where_it_is_closest():
+    rng = np.random.default_rng(3)
+    target = np.linspace(0.6, 0.2, 15)
+    records = target * rng.uniform(0.2, 3.0, size=(7, 15))
+    for fraction, individual in ((1.0, True), (0.9, True), (1.0, False)):
+        factors, fitted, suite = spectra.suite_factors(records, target, fraction, individual)
+        mean = (factors[:, None] * records).mean(axis=0)
+        assert mean.min() / fraction == pytest.approx(target[np.argmin(mean / target)], rel=1e-12)
+        assert np.all(mean >= fraction * target * (1 - 1e-12))
+        # the least such factor: a smaller suite factor leaves the mean below somewhere
+        assert np.any(((1 - 1e-9) * factors[:, None] * records).mean(axis=0) < fraction * target)
+        if individual:  # each record's own fit: the geometric mean of target / Sa
+            assert fitted == pytest.approx([np.prod(target / r) ** (1 / 15) for r in records], rel=1e-12)
+        else:  # one factor for all: the records keep their relative intensities
+            assert np.all(factors == suite) and np.all(fitted == 1.0)
+
+
+def test_range_periods_take_the_targets_bends_and_enough_points():
+    grid = spectra.range_periods(1.0, 3.0, [0.5, 1.0, 2.0, 4.0])
+    assert grid[0] == 1.0 and grid[-1] == pytest.approx(3.0, rel=1e-15) and 2.0 in grid
+    assert np.all(np.diff(grid) > 0) and len(grid) >= spectra.PER_DECADE * np.log10(3.0)
+    assert len(spectra.range_periods(1.0, 1.1)) >= spectra.LEAST_POINTS
+
+
+TARGET = {"period": [0.1, 1.0, 2.0, 4.0], "sa": [0.5, 0.5, 0.25, 0.125]}
+
+
+@pytest.mark.parametrize("file", ["synthetic.AT2", ["synthetic.AT2", "synthetic_y.AT2"]])
+def test_a_record_scaled_over_a_range_is_nowhere_below_the_target(file):
+    """A record alone is a suite of one: its spectrum, computed again from the scaled record at each period,
+    is at or above fraction x target over the range and touches it at one period."""
+    spec = {"to": "spectrum", "target": TARGET, "periods": [1.0, 3.0], "fraction": 0.9}
+    if isinstance(file, list):
+        spec["definition"] = "rotd100"
+    case = case_from({**CASE, "excitation": {"kind": "record", "file": file, "scale": spec}}, RECORDS)
+    grid = spectra.range_periods(1.0, 3.0, TARGET["period"])
+    sa = np.array([spectra.spectral_acceleration(case.excitation, T, 0.05, spec.get("definition", "rotd50"))
+                   for T in grid]) / G
+    ratio = sa / (0.9 * np.interp(grid, TARGET["period"], TARGET["sa"]))
+    assert ratio.min() == pytest.approx(1.0, rel=1e-9) and np.all(ratio > 1 - 1e-9)
+    attrs = case.excitation.attrs()
+    scale = attrs["record_scale"] if not isinstance(file, list) else attrs["record_1_scale"]
+    assert attrs["record_scaled_to"] == "spectrum" and list(attrs["record_scaling_periods_s"]) == [1.0, 3.0]
+    assert scale == attrs["record_scaling_fit"] * attrs["record_scaling_suite_factor"]
+    # a given suite factor is applied to the record's own fit
+    given = case_from({**CASE, "excitation": {"kind": "record", "file": file,
+                                              "scale": {**spec, "suite_factor": 2.0}}}, RECORDS).excitation.attrs()
+    assert given["record_scaling_suite_factor"] == 2.0 and given["record_scaling_fit"] == attrs["record_scaling_fit"]
+
+
+def test_a_target_spectrum_file_is_read(tmp_path):
+    (tmp_path / "target.csv").write_text("# design spectrum\nperiod, sa\n0.1, 0.5\n1.0, 0.5\n2.0, 0.25 # bend\n"
+                                         "4.0, 0.125\n")
+    (tmp_path / "synthetic.AT2").write_bytes((RECORDS / "synthetic.AT2").read_bytes())
+    scale = {"to": "spectrum", "periods": [1.0, 3.0]}
+    from_file = case_from({**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2",
+                                                  "scale": {**scale, "target": "target.csv"}}}, tmp_path)
+    inline = case_from({**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2",
+                                               "scale": {**scale, "target": TARGET}}}, tmp_path)
+    assert from_file.excitation.scale == inline.excitation.scale
+
+
+@pytest.mark.parametrize("scale, message", [
+    ({"target": {"period": [1.0, 0.5], "sa": [0.1, 0.2]}}, "target: the periods must be at least two, > 0 and incr"),
+    ({"target": {"period": [1.0, 2.0], "sa": [0.1]}}, "target: expected lists period (s) and sa (g) of the same"),
+    ({"target": {"period": [1.0, 2.0], "sa": [0.1, 0.0]}}, "target: every Sa must be a number > 0"),
+    ({"target": "missing.csv"}, "target: cannot read the target spectrum 'missing.csv'"),
+    ({"periods": [3.0, 1.0]}, "periods: expected T_low < T_high, got [3.0, 1.0]"),
+    ({"periods": [0.05, 3.0]}, "periods: the range [0.05, 3.0] s is not within the target's periods 0.1 to 4 s"),
+    ({"fraction": 0.0}, "fraction: must be > 0"),
+    ({"individual": "yes"}, "individual: expected true (each record fitted to the target first) or false"),
+    ({"definition": "rotd100"}, "definition: says how a pair's spectral acceleration is taken"),
+    ({"to": "spectra"}, "to: must be one of ['spectral_acceleration', 'spectrum'], got 'spectra'"),
+    ({"period": 1.0}, "unknown key"),
+])
+def test_bad_range_scaling_is_refused_naming_the_key(scale, message):
+    spec = {"to": "spectrum", "target": TARGET, "periods": [1.0, 3.0], **scale}
+    with pytest.raises(CaseError) as err:
+        case_from({**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": spec}}, RECORDS)
+    assert f"excitation.scale.{message}" in str(err.value) or message in str(err.value)
+
+
+def test_periods_beyond_the_record_are_refused():
+    spec = {"to": "spectrum", "target": {"period": [0.1, 100.0], "sa": [0.3, 0.1]}, "periods": [1.0, 50.0]}
+    with pytest.raises(CaseError, match=r"excitation.scale.periods: 50 s is longer than the record"):
+        case_from({**CASE, "excitation": {"kind": "record", "file": "synthetic.AT2", "scale": spec}}, RECORDS)
+
+
+def test_a_pair_of_unequal_components_cut_by_a_window_is_scaled_on_what_both_cover(tmp_path):
+    """Components of 1200 and 1400 samples, a window both cover: accepted with a factor, and (before,
+    refused) scaled to a spectral acceleration from the part both components cover."""
+    from dccss.records import read_at2, write_at2
+
+    dt, a = read_at2(RECORDS / "synthetic.AT2")
+    _, b = read_at2(RECORDS / "synthetic_y.AT2")
+    write_at2(tmp_path / "Q_000.AT2", dt, a[:1200])
+    write_at2(tmp_path / "Q_090.AT2", dt, b[:1400])
+    spec = {"to": "spectral_acceleration", "period": 1.0, "target": 0.3}
+    excitation = {"kind": "record", "file": ["Q_000.AT2", "Q_090.AT2"], "window": [0.0, 10.0]}
+    case = case_from({**CASE, "excitation": {**excitation, "scale": spec}}, tmp_path)
+    both = RecordPair.from_files([tmp_path / "Q_000.AT2", tmp_path / "Q_090.AT2"], window=(0.0, 1199 * dt))
+    expected = 0.3 * G / spectra.spectral_acceleration(both, 1.0)
+    assert case.excitation.attrs()["record_1_scale"] == pytest.approx(expected, rel=1e-12)

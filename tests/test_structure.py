@@ -539,3 +539,18 @@ def test_the_peaks_are_over_the_records_samples_not_only_the_steps(components):
     assert np.max(np.linalg.norm(response.shear_ratio, axis=1)) < 0.95 * peak  # the steps miss the peak
     assert summarize(response)["shear_ratio_max_abs"] == pytest.approx(peak, rel=1e-12)
     assert response.peaks[0] == 0.0
+
+
+@pytest.mark.parametrize("components", [1, 2])
+def test_the_peaks_reach_the_records_end_when_the_step_does_not(components):
+    """A pulse in the record's last 0.05 s: a step of 0.04 s ends the requested times 0.03 s before the
+    record does; the peaks are still the whole record's, as with a step that divides it (before, they
+    stopped at the last step: 0.0016 m against 0.0080 m)."""
+    t = np.arange(1001) * 0.01
+    a = np.where(t > 9.95, 0.6 * G, 0.0)
+    acceleration = a if components == 1 else np.column_stack([a, 0.5 * a])
+    ground = Ground.from_samples(t, acceleration)
+    fine = solve(ground, t, 1.8, 0.05, 0.0)
+    coarse = solve(ground, np.arange(250) * 0.04, 1.8, 0.05, 0.0)
+    assert fine.peaks[0] > 5e-3 and coarse.peaks == pytest.approx(fine.peaks, rel=1e-12)
+    assert np.max(np.linalg.norm(coarse.stroke, axis=1)) < 0.5 * fine.peaks[0]  # the steps alone miss the pulse

@@ -187,14 +187,20 @@ def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):
     assert np.allclose(ds["stroke_max_abs"].values, c * alone["stroke_max_abs"].values, rtol=1e-9)
 
 
-@pytest.mark.slow
-def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
+def _project(suite):
+    """A copy of the project with the suite's records in config/studies/records_suite."""
     (suite / "work").mkdir()
     work = copy_project(suite / "work")
     (work / "config/studies/records_suite").mkdir(parents=True)
     for name in NAMES:
         source = suite / "records" / f"{name}.AT2"
         (work / "config/studies/records_suite" / f"{name}.AT2").write_bytes(source.read_bytes())
+    return work
+
+
+@pytest.mark.slow
+def test_a_suite_study_runs_through_snakemake_with_jobs_per_record(suite):
+    work = _project(suite)
     study_file = work / "config/studies/suite.yaml"
     # the suite drives a structure, its damping swept: both axes through the workflow
     config = {**CONFIG, "structure": {"friction": 0.05},
@@ -292,3 +298,68 @@ def test_a_rotation_given_twice_is_refused(suite):
               "sweep": {"rotation": [0.0, 30.0]}, "histories": []}
     with pytest.raises(StudyError, match=r"sweep\.rotation: the excitation gives a rotation itself"):
         Study.from_config(config, suite)
+
+
+RANGE = {"to": "spectrum", "target": {"period": [0.1, 1.0, 2.0, 4.0], "sa": [0.5, 0.5, 0.25, 0.125]},
+         "periods": [0.8, 2.5], "fraction": 0.9}
+
+
+def test_a_suite_scaled_over_a_period_range_has_its_mean_at_the_target(suite):
+    """Codes' scaling: the suite's mean spectrum (each record's computed again from its scaled record) is at
+    or above fraction x target over the range and touches it; a chunk's and a history's record (their
+    spec holds that record alone, with the suite's factor) has the factor the whole suite gives it."""
+    from dccss import spectra
+    from dccss.records import G
+    from dccss.studies import sweep_spec
+
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": RANGE}, "sweep": {"record": ["records/*.AT2"]},
+              "models": ["compliant"], "histories": [{"record": "RSN13_EAST"}]}
+    study = Study.from_config(config, suite)
+    grid = spectra.range_periods(0.8, 2.5, RANGE["target"]["period"])
+    sa = np.array([spectra.spectrum(e, grid) for e in study.records.values()]) / G
+    ratio = sa.mean(axis=0) / (0.9 * np.interp(grid, RANGE["target"]["period"], RANGE["target"]["sa"]))
+    assert ratio.min() == pytest.approx(1.0, rel=1e-9) and np.all(ratio > 1 - 1e-9)
+    factors = {name: e.attrs()["record_scale"] for name, e in study.records.items()}
+    assert len(set(factors.values())) == 3 and study.suite_factor != 1.0
+    for name, entry in study.record_entries.items():
+        alone = Study.from_config(sweep_spec(config, ["compliant"], entry, study.suite_factor), suite)
+        assert alone.records[name].attrs()["record_scale"] == factors[name]
+    assert history_case(study, 0, "compliant").excitation.scale == factors["RSN13_EAST"]
+    ds = _combined(study)
+    assert np.array_equal(ds["record_scale"].values, list(factors.values()))
+    mean = ds["record_sa"].mean("record") / (0.9 * ds["target_sa"])
+    assert float(mean.min()) == pytest.approx(1.0, rel=1e-12)
+    assert ds["record_sa"].attrs["scaling_suite_factor"] == study.suite_factor
+    assert np.allclose(ds["record_sa"].values / G, sa, rtol=1e-9)  # the factor times the spectrum: the scaled one's
+    assert np.array_equal(ds["record_scale"].values, ds["record_scale_fit"].values * study.suite_factor)
+
+
+def test_a_suite_scaled_by_one_factor_keeps_the_records_relative_intensities(suite):
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": {**RANGE, "individual": False}},
+              "sweep": {"record": ["records/*.AT2"]}, "models": ["compliant"], "histories": []}
+    study = Study.from_config(config, suite)
+    assert {e.attrs()["record_scale"] for e in study.records.values()} == {study.suite_factor}
+
+
+@pytest.mark.slow
+def test_a_suite_scaled_over_a_range_runs_through_snakemake_and_draws_its_spectra(suite):
+    work = _project(suite)
+    study_file = work / "config/studies/suite.yaml"
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": RANGE}, "models": ["compliant"],
+              "sweep": {"record": ["records_suite/RSN11_NORTH.AT2", "records_suite/RSN12_SOUTH.AT2"]},
+              "histories": [{"record": "RSN12_SOUTH"}]}
+    study_file.write_text(yaml.safe_dump(config))
+    run = snakemake(work, "--configfile", "config/studies/suite.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    ds = xr.open_dataset(work / "results/studies/suite/suite.nc")
+    assert float((ds["record_sa"].mean("record") / (0.9 * ds["target_sa"])).min()) == pytest.approx(1.0, rel=1e-12)
+    history = xr.open_dataset(work / "results/studies/suite/histories/compliant_0.nc")
+    assert history.attrs["record_scale"] == float(ds["record_scale"].sel(record="RSN12_SOUTH"))
+    assert (work / "figures/studies/suite/spectra.png").is_file()
+    # a third record changes the suite's factor: every record's jobs run again
+    config["sweep"]["record"].append("records_suite/RSN13_EAST.AT2")
+    study_file.write_text(yaml.safe_dump(config))
+    run = snakemake(work, "--configfile", "config/studies/suite.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    rerun = re.findall(r"^\s*output: results/studies/suite/chunks/(\S+)\.nc$", run.stdout + run.stderr, re.MULTILINE)
+    assert sorted(rerun) == [f"compliant_{n}.0" for n in NAMES], rerun

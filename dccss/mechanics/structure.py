@@ -166,8 +166,9 @@ class Ground(NamedTuple):
 class Response(NamedTuple):
     """The structure's response at the requested times: stroke u (m), its velocity (m/s), the
     friction state z and the force ratio F/W, each (T, c); ``sticking`` (T,) whether u̇ = 0 there;
-    ``peaks``: the largest |u| (m) and |F/W| over the record's samples and the requested times
-    between the first and the last of these (a coarse step would miss the peaks between its times)."""
+    ``peaks``: the largest |u| (m) and |F/W| over the record's samples and the requested times, from
+    the first of these to the record's end (a coarse step would miss the peaks between its times, and
+    a step that does not divide the record the peaks after its last time)."""
 
     stroke: np.ndarray
     velocity: np.ndarray
@@ -211,7 +212,7 @@ def solve(ground: Ground, times, L, mu, zeta) -> Response:
         u, v, z = u[:, None], v[:, None], z[:, None]
     else:
         u, v, z, stick = _plane(refined, omega, zeta, mu * G)
-    span = slice(index[0], index[-1] + 1)
+    span = slice(index[0], None)  # to the record's end, past the last requested time
     peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, u / L + mu * z))
     u, v, z, stick = u[index], v[index], z[index], stick[index]
     return Response(u, v, z, u / L + mu * z, stick, peaks)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..excitation import underlying
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.structure import G
@@ -126,7 +127,7 @@ def record_peaks(study) -> dict:
             if keys:
                 values.append(max(float(a[k]) for k in keys))
             elif attr == "pgd_m":  # a table: its samples (scaled as the study scales them)
-                samples = np.reshape(excitation.displacement(_inner(excitation).time), (-1, excitation.components))
+                samples = np.reshape(excitation.displacement(underlying(excitation).time), (-1, excitation.components))
                 values.append(float(np.max(np.linalg.norm(samples, axis=1))))
             else:
                 values.append(np.nan)
@@ -147,6 +148,8 @@ def record_peaks(study) -> dict:
         out["record_sa_unscaled"] = xr.Variable(("record",), sa, {
             "units": "m s-2", "long_name": "the record's spectral acceleration before scaling (/ 9.80665 for g)",
             **{k.removeprefix("record_"): attrs[0][k] for k in keys if k in attrs[0]}})
+    if attrs[0].get("record_scaled_to") == "spectrum":  # scaled over a period range, as a suite
+        out.update(_suite_spectra(study, attrs, np.array(scales)))
     if "record_orientation" in attrs[0]:
         out["record_orientation"] = xr.Variable(("record",), np.array([a["record_orientation"] for a in attrs],
                                                                       dtype=object),
@@ -154,11 +157,26 @@ def record_peaks(study) -> dict:
     return out
 
 
-def _inner(excitation):
-    """The excitation a wrapper (``Component``, ``Oriented``, ``Scaled``) is built on."""
-    while hasattr(excitation, "excitation"):
-        excitation = excitation.excitation
-    return excitation
+def _suite_spectra(study, attrs, scales) -> dict:
+    """A suite scaled over a period range: each record's own fit and its spectrum as scaled, the target
+    (``spectrum_period``: the periods the scaling checks) and how it was scaled (attributes)."""
+    spectra = [underlying(e).spectrum for e in study.records.values()]
+    keys = ("record_scaling_periods_s", "record_scaling_damping", "record_scaling_fraction",
+            "record_scaling_suite_factor", "record_scaling_definition")
+    how = {k.removeprefix("record_"): attrs[0][k] for k in keys if k in attrs[0]}
+    period = ("spectrum_period", spectra[0]["periods"], {"units": "s", "long_name": "the periods the scaling checks"})
+    return {
+        "spectrum_period": xr.Variable(*period),
+        "record_scale_fit": xr.Variable(("record",), np.array([a["record_scaling_fit"] for a in attrs]), {
+            "units": "1", "long_name": "the record's own fit to the target over the range (the geometric mean of "
+                                       "target / Sa); record_scale is it times the suite's factor"}),
+        "record_sa": xr.Variable(("record", "spectrum_period"),
+                                 scales[:, None] * np.array([s["unscaled"] for s in spectra]), {
+            "units": "m s-2", "long_name": "the record's spectral acceleration as scaled (its factor times its "
+                                           "spectrum; / 9.80665 for g)", **how}),
+        "target_sa": xr.Variable(("spectrum_period",), spectra[0]["target"], {
+            "units": "m s-2", "long_name": "the target spectrum the suite is scaled to (/ 9.80665 for g)", **how}),
+    }
 
 
 #: the suite statistics over the ``record`` dimension (EN 1998-1 4.3.3.4.3 and ASCE 7-22 17.3.4: the

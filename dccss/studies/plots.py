@@ -31,6 +31,7 @@ from matplotlib.transforms import ScaledTranslation
 
 from ..drawing import caption_line, freeze, new_figure
 from ..mechanics.models import REGISTRY
+from ..mechanics.structure import G
 from ..mechanics.summaries import model_specific
 from ..results import MODEL_TITLES, failure_of, has_structure
 from .spec import layout
@@ -178,6 +179,50 @@ def _complete(fig, title, caption, groups):
     by_columns = [row[c] for c in range(ncols) for row in table]  # the legend fills its columns first
     fig.legend(handles=by_columns, loc="outside upper center", ncols=ncols, fontsize=9, frameon=False, title=title,
                title_fontsize=12)
+    caption_line(fig, caption)
+    return freeze(fig)
+
+
+# --- a suite scaled to a spectrum ---------------------------------------------------------------
+def scaled_over_range(ds) -> bool:
+    """Whether a study's records were scaled over a period range (``spectra``'s figure is drawn)."""
+    return "record_sa" in ds
+
+
+def spectra(ds, caption: str) -> Figure:
+    """A suite scaled over a period range: each record's spectrum as scaled, their mean and the target
+    (and the fraction of it the mean must reach), in g, over the range's periods."""
+    how = ds["record_sa"].attrs
+    period, fraction = ds["spectrum_period"].values, float(how["scaling_fraction"])
+    fig, axs = new_figure((7.2, 4.6))
+    ax = axs[0, 0]
+    records = [str(r) for r in ds["record"].values]
+    for i, (name, label) in enumerate(zip(records, _shortened(records))):
+        ax.plot(period, ds["record_sa"].sel(record=name).values / G, lw=1.0, color=f"C{i % 10}",
+                marker=GROUP_MARKERS[i % len(GROUP_MARKERS)], ms=3.5, markevery=4, label=label)
+    mean = ds["record_sa"].mean("record").values / G
+    target = ds["target_sa"].values / G
+    ax.plot(period, mean, color="black", lw=2.6, label="mean over the records", zorder=5)
+    ax.plot(period, target, color="tab:red", lw=1.8, label="target", zorder=6)
+    if fraction != 1.0:
+        ax.plot(period, fraction * target, color="tab:red", lw=1.4, ls=(0, (4, 2)), label=f"{fraction:g} × target",
+                zorder=6)
+    worst = int(np.argmin(mean / (fraction * target)))
+    ax.plot(period[worst], mean[worst], ls="none", marker="o", ms=9, mfc="none", mec="black", mew=1.4, zorder=7,
+            label=f"closest to {'the target' if fraction == 1.0 else f'{fraction:g} × target'}: "
+                  f"T = {period[worst]:.3g} s")
+    ax.set_xlim(period[0], period[-1])
+    ax.set_ylim(0, None)
+    ax.set_xlabel("period T (s)")
+    definition = f", {how['scaling_definition'].upper().replace('GEOMETRIC_MEAN', 'geometric mean')}" \
+        if "scaling_definition" in how else ""
+    ax.set_ylabel(f"spectral acceleration Sa (g; {100 * float(how['scaling_damping']):g} % damping{definition})")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, ncols=2 if len(records) > 5 else 1, loc="best")
+    low, high = (float(v) for v in how["scaling_periods_s"])
+    title = (f"{len(records)} records scaled over {low:g}–{high:g} s: their mean at or above "
+             f"{fraction:g} × target (suite factor {float(how['scaling_suite_factor']):.3g})")
+    fig.suptitle(title, fontsize=11)
     caption_line(fig, caption)
     return freeze(fig)
 

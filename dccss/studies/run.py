@@ -81,6 +81,8 @@ def history_mapping(study, i, model) -> dict:
     excitation = dict(study.excitation_spec)
     if "record" in point:
         excitation["file"] = study.record_entries[point["record"]]
+    if study.suite_factor is not None:  # a suite scaled over a period range: the factor all its records set
+        excitation["scale"] = {**excitation["scale"], "suite_factor": study.suite_factor}
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]

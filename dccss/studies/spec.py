@@ -12,7 +12,7 @@ import numpy as np
 
 from ..case import excitation_from, geometry_from, newton_from, structure_from
 from ..checks import CaseError, Problems, check_keys, choice, number
-from ..excitation import COMPONENTS, Component, Oriented, check_step
+from ..excitation import COMPONENTS, Component, Oriented, check_step, underlying
 from ..mechanics import registry
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
@@ -22,6 +22,7 @@ from ..mechanics.structure import Structure, StructureError
 from ..paper.prototypes import TABLE1
 from ..schema import errors as schema_errors
 from ..schema import schema
+from ..spectra import suite_factors
 from .grid import PLATE3_FOLLOWS, Grid
 
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
@@ -74,16 +75,21 @@ def axis_values(spec, key) -> np.ndarray:
     return np.array([number(v, f"{key}[{i}]") for i, v in enumerate(spec)])
 
 
-def sweep_spec(config: dict, models=None, record=None) -> dict:
+def sweep_spec(config: dict, models=None, record=None, suite_factor=None) -> dict:
     """The part of a study file that the sweep's results depend on: all but the description, the
     marks and the histories (and, with ``models``, only those models; with ``record``, one entry of
-    the ``record`` axis (``Study.record_entries``), only that record: what its jobs depend on)."""
+    the ``record`` axis (``Study.record_entries``), only that record: what its jobs depend on, with
+    the ``suite_factor`` of a suite scaled over a period range (``Study.suite_factor``), which the
+    other records set)."""
     spec = {k: v for k, v in config.items() if k not in NOT_SWEPT}
     spec["study"] = {"name": config["study"]["name"]}
     if models is not None:
         spec["models"] = list(models)
     if record is not None:
         spec["sweep"] = {**config["sweep"], "record": [record]}
+    if suite_factor is not None:
+        scale = {**spec["excitation"]["scale"], "suite_factor": suite_factor}
+        spec["excitation"] = {**spec["excitation"], "scale": scale}
     return spec
 
 
@@ -155,6 +161,13 @@ class Study:
     @cached_property
     def grid(self) -> Grid:
         return Grid(self)
+
+    @property
+    def suite_factor(self) -> float | None:
+        """The factor of a suite scaled over a period range (``dccss.spectra.suite_factors``), else None."""
+        if not self.records:
+            return None
+        return next(iter(self.records.values())).attrs().get("record_scaling_suite_factor")
 
     @classmethod
     def from_config(cls, config: dict, base: Path = Path(".")) -> Study:
@@ -266,6 +279,14 @@ def _excitations(config, axes, base, geometry):
     records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
     if len({e.components for e in records.values()}) > 1:
         raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
+    scale = spec.get("scale")
+    if isinstance(scale, dict) and scale.get("to") == "spectrum" and "suite_factor" not in scale:
+        # each record was scaled as a suite of one: now all of them with the suite's factor
+        spectra = [underlying(e).spectrum for e in records.values()]
+        suite = suite_factors([s["unscaled"] for s in spectra], spectra[0]["target"], scale.get("fraction", 1.0),
+                              scale.get("individual", True))[2]
+        spec = {**spec, "scale": {**scale, "suite_factor": suite}}
+        records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
     return next(iter(records.values())), records, axes
 
 

@@ -49,9 +49,11 @@ def chunk_record(label):
 
 
 def chunk_spec(wildcards):
-    """What a chunk's summaries depend on: its model's part of the study file, and only its record's."""
+    """What a chunk's summaries depend on: its model's part of the study file, and only its record's
+    (and, for a suite scaled over a period range, the suite's factor, which all its records set)."""
     record = chunk_record(wildcards.chunk)
-    return sweep_spec(config, [wildcards.model], None if record is None else STUDY.record_entries[record])
+    return sweep_spec(config, [wildcards.model], None if record is None else STUDY.record_entries[record],
+                      STUDY.suite_factor)
 
 
 def chunk_files():
@@ -84,6 +86,7 @@ def convergence_plot():
 
 def study_plots():
     names = ["maps"] + (["histories"] if STUDY.histories else []) + (["convergence"] if convergence_plot() else [])
+    names += ["spectra"] if STUDY.suite_factor is not None else []  # a suite scaled over a period range
     files = [f"figures/studies/{STUDY.name}/{name}.{ext}" for name in names for ext in ("png", "pdf")]
     return files + ([f"figures/studies/{STUDY.name}/convergence.csv"] if convergence_plot() else [])
 

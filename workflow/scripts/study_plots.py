@@ -16,6 +16,8 @@ with logged(snakemake.log[0]):
     out = {Path(f).name: f for f in snakemake.output}
     combined = load(snakemake.input.combined)
     save(plots.maps(combined, params.marks, params.caption), out["maps.png"], out["maps.pdf"])
+    if "spectra.png" in out:
+        save(plots.spectra(combined, params.caption), out["spectra.png"], out["spectra.pdf"])
     if params.labels:
         runs = [{} for _ in params.labels]
         for path in snakemake.input.histories:
