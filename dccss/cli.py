@@ -69,9 +69,9 @@ def _record(a) -> str:
               f"{a['record_scaled_to_sa_g']:g} g" if "record_scaled_to_sa_g" in a else "")
     if a.get("record_scaled_to") == "spectrum":
         low, high = a["record_scaling_periods_s"]
-        scaled = (f": its spectrum over {low:g}-{high:g} s ({100 * a['record_scaling_damping']:g} %) at or above "
-                  f"{a['record_scaling_fraction']:g} x target; fit {a['record_scaling_fit']:.4g}, suite factor "
-                  f"{a['record_scaling_suite_factor']:.4g}")
+        scaled = (f": its suite's mean spectrum at or above {a['record_scaling_fraction']:g} x target over "
+                  f"{low:g}-{high:g} s ({100 * a['record_scaling_damping']:g} %; a record alone is its own suite), "
+                  f"its fit {a['record_scaling_fit']:.4g} x the suite's factor {a['record_scaling_suite_factor']:.4g}")
     return f"; record {peaks} (scale {a[parts[0][1] + 'scale']:g}{scaled})"
 
 

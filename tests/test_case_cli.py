@@ -276,6 +276,15 @@ def test_the_summary_line_states_the_records_peaks_and_scale(tmp_path, capsys):
     assert main(["run", str(write(tmp_path, pair)), "-o", str(tmp_path / "b.nc")]) == 0
     assert ("; record 1 (synthetic.AT2): PGA = 0.699 g, PGV = 76.4 cm/s, PGD = 30 cm; 2 (synthetic_y.AT2): PGA = 0.6 g"
             in capsys.readouterr().out)
+    # scaled over a period range: what is held at the target is the suite's mean (a record alone: its own)
+    scale = {"to": "spectrum", "target": {"period": [0.1, 4.0], "sa": [0.3, 0.3]}, "periods": [1.0, 3.0],
+             "fraction": 0.9, "suite_factor": 1.5}
+    ranged = {**one, "excitation": {**one["excitation"], "scale": scale}}
+    assert main(["run", str(write(tmp_path, ranged)), "-o", str(tmp_path / "c.nc")]) == 0
+    attrs = xr.open_dataset(tmp_path / "c.nc").attrs
+    assert (f"(scale {attrs['record_scale']:g}: its suite's mean spectrum at or above 0.9 x target over 1-3 s (5 %; a "
+            f"record alone is its own suite), its fit {attrs['record_scaling_fit']:.4g} x the suite's factor 1.5)"
+            in capsys.readouterr().out)
 
 
 @pytest.mark.parametrize("changes, message", [

@@ -238,3 +238,15 @@ def test_a_pair_of_unequal_components_cut_by_a_window_is_scaled_on_what_both_cov
     both = RecordPair.from_files([tmp_path / "Q_000.AT2", tmp_path / "Q_090.AT2"], window=(0.0, 1199 * dt))
     expected = 0.3 * G / spectra.spectral_acceleration(both, 1.0)
     assert case.excitation.attrs()["record_1_scale"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_the_orientation_peaks_are_those_over_every_sample():
+    """``orientation_peaks`` skips the samples that cannot give a peak: the same values, bit for bit, as the
+    largest |u_x cos θ + u_y sin θ| over all samples, whatever the motion's shape."""
+    rng = np.random.default_rng(7)
+    c, s = np.cos(spectra.ORIENTATIONS), np.sin(spectra.ORIENTATIONS)
+    for n in (2, 50, 3000):
+        for shape in ((1.0, 1.0), (1.0, 1e-6), (0.0, 0.0), (3.0, 0.5)):
+            u = rng.normal(size=(n, 2)) * shape
+            every = np.max(np.abs(c[None, :] * u[:, :1] + s[None, :] * u[:, 1:]), axis=0)
+            assert np.array_equal(spectra.orientation_peaks(u), every)

@@ -185,6 +185,18 @@ def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):
                                          "histories": []}, suite))
     assert np.all(ds["stroke_max_abs"].values > 0.01)
     assert np.allclose(ds["stroke_max_abs"].values, c * alone["stroke_max_abs"].values, rtol=1e-9)
+    # the suite says it is bidirectional (its maps then name the pad's tilt, not θ², as a single pair's
+    # do; before, a suite's dataset had no excitation_components) and names its one device's pendulum
+    assert ds.attrs["excitation_components"] == 2 and alone.attrs["excitation_components"] == 1
+    from dccss.mechanics.geometry import Geometry
+    from dccss.mechanics.structure import period
+    from dccss.paper.prototypes import TABLE1
+    from dccss.studies import plots
+
+    L = float(Geometry.from_degrees(**TABLE1["DFP1"]).L)
+    assert ds.attrs["structure_pendulum_length_m"] == L and ds.attrs["structure_period_s"] == period(L)
+    title = [t.get_text() for t in plots.maps(ds, {}, "suite").findobj(lambda a: hasattr(a, "get_text"))]
+    assert any("tilt" in t for t in title) and not any("θ²" in t for t in title)
 
 
 def _project(suite):
@@ -248,8 +260,10 @@ def test_a_suite_scaled_to_a_spectrum_has_the_target_at_its_period(suite):
         assert abs(sa / G / 0.25 - 1) < 1e-6, name
     ds = _combined(study)
     assert ds["stroke_max_abs_suite"].sizes == {"statistic": 5, "model": 2, "friction": 2}
-    with pytest.raises(StudyError, match="sweep.scale: the records are scaled to a spectral acceleration"):
-        Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": target}}, suite)
+    for scale in (target, RANGE):  # a scale axis would multiply the scaling to a target again
+        with pytest.raises(StudyError, match=r"sweep.scale: the records are scaled to a target spectrum or spectral "
+                                             r"acceleration \(excitation.scale\)"):
+            Study.from_config({**CONFIG, "excitation": {**CONFIG["excitation"], "scale": scale}}, suite)
 
 
 def test_a_suite_of_tables(tmp_path):
@@ -345,7 +359,10 @@ def test_a_suite_scaled_by_one_factor_keeps_the_records_relative_intensities(sui
 def test_a_suite_scaled_over_a_range_runs_through_snakemake_and_draws_its_spectra(suite):
     work = _project(suite)
     study_file = work / "config/studies/suite.yaml"
-    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": RANGE}, "models": ["compliant"],
+    target = work / "config/studies/records_suite/target.csv"
+    target.write_text("period, sa\n" + "".join(f"{t}, {a}\n" for t, a in zip(*RANGE["target"].values())))
+    scale = {**RANGE, "target": "records_suite/target.csv"}
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": scale}, "models": ["compliant"],
               "sweep": {"record": ["records_suite/RSN11_NORTH.AT2", "records_suite/RSN12_SOUTH.AT2"]},
               "histories": [{"record": "RSN12_SOUTH"}]}
     study_file.write_text(yaml.safe_dump(config))
@@ -363,3 +380,54 @@ def test_a_suite_scaled_over_a_range_runs_through_snakemake_and_draws_its_spectr
     assert run.returncode == 0, run.stderr[-3000:]
     rerun = re.findall(r"^\s*output: results/studies/suite/chunks/(\S+)\.nc$", run.stdout + run.stderr, re.MULTILINE)
     assert sorted(rerun) == [f"compliant_{n}.0" for n in NAMES], rerun
+    # a target twice as high: each record's fit doubles, the suite's factor does not change; the target is
+    # an input of every record's jobs, so all of them run again (before, none did)
+    before = xr.open_dataset(work / "results/studies/suite/suite.nc")["record_scale"].values
+    target.write_text("period, sa\n" + "".join(f"{t}, {2 * a}\n" for t, a in zip(*RANGE["target"].values())))
+    run = snakemake(work, "--configfile", "config/studies/suite.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    rerun = re.findall(r"^\s*output: results/studies/suite/chunks/(\S+)\.nc$", run.stdout + run.stderr, re.MULTILINE)
+    assert sorted(rerun) == [f"compliant_{n}.0" for n in NAMES], rerun
+    after = xr.open_dataset(work / "results/studies/suite/suite.nc")["record_scale"].values
+    assert np.allclose(after, 2 * before, rtol=1e-12)
+
+
+def test_a_suites_maps_draw_its_mean_and_largest_not_a_row_per_record(suite):
+    """Two numeric axes: a row per statistic and model (before, a row per record and model: 18 rows for
+    nine records and two models, and no design value drawn)."""
+    from dccss.studies import plots
+
+    study = Study.from_config({**CONFIG, "models": ["compliant"], "histories": [],
+                               "sweep": {"record": ["records/*.AT2"], "scale": [1.0, 2.5], "theta2_0": [0.0, 0.5]}},
+                              suite)
+    ds = _combined(study)
+    fig = plots.maps(ds, {}, "suite")
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    assert len(titles) == 2 * 3  # mean and largest of compliant sliding's max |θ²|, rise and interpenetration
+    assert sum("mean of the records" in t for t in titles) == 3 and not any("RSN" in t for t in titles)
+    panel = next(ax for ax in fig.axes if ax.get_title() == "Compliant Sliding, mean of the records:\nmax |θ²|")
+    drawn = panel.collections[0].get_array().reshape(2, 2)  # (theta2_0, scale) cells
+    expected = ds["theta2_max_abs"].sel(model="compliant").mean("record").transpose("theta2_0", "scale").values
+    assert np.allclose(drawn, expected, rtol=1e-12)
+    assert "statistics over its 3 records" in fig.legends[0].get_title().get_text()
+
+
+def test_a_suite_warns_of_the_scales_it_runs_not_of_each_records_scale_alone(tmp_path):
+    """Records scaled to a strong target reach an implausible PGA: each is warned about once, with the factor
+    the suite runs it at (before, also with the factor it would have alone, the study's first pass, which
+    is never run)."""
+    import warnings
+
+    dt, a = read_at2(ROOT / "config/studies/records/synthetic.AT2")
+    _, b = read_at2(ROOT / "config/studies/records/synthetic_y.AT2")
+    write_at2(tmp_path / "ONE.AT2", dt, a)
+    write_at2(tmp_path / "TWO.AT2", dt, 0.02 * b)
+    scale = {**RANGE, "fraction": 1.0, "target": {"period": [0.5, 3.0], "sa": [3.0, 3.0]}}
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": scale},
+              "sweep": {"record": ["ONE.AT2", "TWO.AT2"]}, "models": ["compliant"], "histories": []}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        study = Study.from_config(config, tmp_path)
+    said = [str(w.message) for w in caught if "peak ground acceleration" in str(w.message)]
+    scales = {name: e.attrs()["record_scale"] for name, e in study.records.items()}
+    assert len(said) == 2 and all(any(f"scale ({f:g})" in m for m in said) for f in scales.values()), said

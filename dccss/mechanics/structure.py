@@ -152,6 +152,8 @@ class Ground(NamedTuple):
         """The same acceleration with ``times`` added as interval ends, and the index of each of
         ``times`` among the new ends (times within 1e-9 of an interval of an end count as on it)."""
         times = np.asarray(times, dtype=float)
+        if np.array_equal(times, self.time):  # the samples themselves (a spectrum): nothing to add
+            return self, np.arange(times.size)
         near = 1e-9 * float(np.min(np.diff(self.time)))
         knots = np.union1d(self.time, times)
         keep = np.concatenate([[True], np.diff(knots) > near])

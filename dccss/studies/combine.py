@@ -6,6 +6,7 @@ import numpy as np
 import xarray as xr
 
 from ..excitation import underlying
+from ..mechanics.geometry import PARAMETERS, Geometry
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.structure import G
@@ -27,7 +28,8 @@ def study_attrs(study, model=None, record=None) -> dict:
     """Global attributes of a study's datasets (not the description: only the plots show it); with a
     record axis, the excitation's are those of ``record`` (a chunk's) or, combined, only its kind."""
     if study.records:
-        ground = {"excitation": study.excitation.kind, "records": " ".join(study.records)}
+        ground = {"excitation": study.excitation.kind, "excitation_components": study.excitation.components,
+                  "records": " ".join(study.records)}
         if record is not None:
             ground = {**study.records[record].attrs(), "record": record}
     else:
@@ -46,8 +48,9 @@ def study_attrs(study, model=None, record=None) -> dict:
 
 def structure_attrs(study) -> dict:
     """A study's structure, as a history's attributes name it: ``structure_friction_on``, the file's
-    ``structure_friction_given`` and ``structure_damping`` where they are not sweep axes, and the
-    device's ``structure_friction`` where it is that value (``friction_on`` "device")."""
+    ``structure_friction_given`` and ``structure_damping`` where they are not sweep axes, the
+    device's ``structure_friction`` where it is that value (``friction_on`` "device"), and the
+    pendulum's length and period where the study sweeps no device parameter."""
     if study.structure is None:
         return {}
     s, out = study.structure, {"structure_friction_on": study.structure.friction_on}
@@ -57,6 +60,9 @@ def structure_attrs(study) -> dict:
             out["structure_friction"] = s.friction
     if "damping" not in study.axes:
         out["structure_damping"] = s.damping
+    if not any(axis in study.axes for axis in ("prototype", *PARAMETERS)):  # one device: its pendulum
+        device = s.attrs(Geometry.from_degrees(**study.prototype))
+        out.update({k: device[k] for k in ("structure_pendulum_length_m", "structure_period_s")})
     return out
 
 

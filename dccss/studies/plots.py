@@ -3,8 +3,9 @@
 ``maps`` draws the combined study dataset (dimension ``model`` plus one per sweep axis):
 
 * two or more numeric axes: maps over the first two, one row per model (and per category of a further
-  categorical axis), the cells where the pad reached a retaining ring or the solver failed hatched;
-  further numeric axes at their first value;
+  categorical axis; a suite's mean and largest over its records in place of a row per record), the
+  cells where the pad reached a retaining ring or the solver failed hatched; further numeric axes at
+  their first value;
 * one numeric axis: curves with markers, one per model (and per category of ``prototype``);
 * a categorical axis only (``prototype``): one mark per model and category at integer positions.
 
@@ -22,6 +23,8 @@ import re
 import textwrap
 
 import numpy as np
+import xarray as xr
+from matplotlib import colormaps
 from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -59,7 +62,11 @@ SUMMARY_VARIABLES = [
 ]
 STROKE_COLOUR = "tab:purple"
 #: how the suite statistics over the records are drawn, and their legend
-SUITE_LINES = {"mean": dict(lw=3.4, alpha=0.4, zorder=1), "p84_lognormal": dict(lw=1.6, ls=(0, (1, 1.2)), zorder=1)}
+#: a suite's statistics over its record curves (which are drawn faded, SUITE_RECORDS): the mean in its model's
+#: line made wider, the 84th percentile dotted
+SUITE_LINES = {"mean": dict(lw=3.4, zorder=8), "p84_lognormal": dict(lw=1.6, ls=(0, (1, 1.2)), zorder=8)}
+SUITE_RECORDS = dict(alpha=0.4)
+SUITE_WIDER = 1.4  # points added to the model's line width for the mean
 SUITE_LABELS = {"mean": "mean over the records", "p84_lognormal": "84th percentile over the records (lognormal)"}
 #: (history variable, label, factor to plot units, plot unit)
 HISTORY_ROWS = [
@@ -194,12 +201,13 @@ def spectra(ds, caption: str) -> Figure:
     (and the fraction of it the mean must reach), in g, over the range's periods."""
     how = ds["record_sa"].attrs
     period, fraction = ds["spectrum_period"].values, float(how["scaling_fraction"])
-    fig, axs = new_figure((7.2, 4.6))
+    fig, axs = new_figure((9.6, 4.8))
     ax = axs[0, 0]
     records = [str(r) for r in ds["record"].values]
+    colours = colormaps["tab10" if len(records) <= 10 else "tab20"].colors
     for i, (name, label) in enumerate(zip(records, _shortened(records))):
-        ax.plot(period, ds["record_sa"].sel(record=name).values / G, lw=1.0, color=f"C{i % 10}",
-                marker=GROUP_MARKERS[i % len(GROUP_MARKERS)], ms=3.5, markevery=4, label=label)
+        ax.plot(period, ds["record_sa"].sel(record=name).values / G, lw=1.0, color=colours[i % len(colours)],
+                marker=GROUP_MARKERS[i % len(GROUP_MARKERS)], ms=4, markevery=max(1, len(period) // 8), label=label)
     mean = ds["record_sa"].mean("record").values / G
     target = ds["target_sa"].values / G
     ax.plot(period, mean, color="black", lw=2.6, label="mean over the records", zorder=5)
@@ -209,19 +217,22 @@ def spectra(ds, caption: str) -> Figure:
                 zorder=6)
     worst = int(np.argmin(mean / (fraction * target)))
     ax.plot(period[worst], mean[worst], ls="none", marker="o", ms=9, mfc="none", mec="black", mew=1.4, zorder=7,
-            label=f"closest to {'the target' if fraction == 1.0 else f'{fraction:g} × target'}: "
+            clip_on=False, label=f"closest to {'the target' if fraction == 1.0 else f'{fraction:g} × target'}: "
                   f"T = {period[worst]:.3g} s")
     ax.set_xlim(period[0], period[-1])
     ax.set_ylim(0, None)
     ax.set_xlabel("period T (s)")
-    definition = f", {how['scaling_definition'].upper().replace('GEOMETRIC_MEAN', 'geometric mean')}" \
-        if "scaling_definition" in how else ""
+    names = {"rotd50": "RotD50", "rotd100": "RotD100", "geometric_mean": "geometric mean"}
+    definition = f", {names[how['scaling_definition']]}" if "scaling_definition" in how else ""
     ax.set_ylabel(f"spectral acceleration Sa (g; {100 * float(how['scaling_damping']):g} % damping{definition})")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, ncols=2 if len(records) > 5 else 1, loc="best")
+    ax.legend(fontsize=8, ncols=2 if len(records) > 12 else 1, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              borderaxespad=0.0)
     low, high = (float(v) for v in how["scaling_periods_s"])
-    title = (f"{len(records)} records scaled over {low:g}–{high:g} s: their mean at or above "
-             f"{fraction:g} × target (suite factor {float(how['scaling_suite_factor']):.3g})")
+    what = "record pairs" if ds.attrs.get("excitation_components") == 2 else "records"
+    title = (f"{len(records)} {what} scaled over {low:g}–{high:g} s: their mean at or above "
+             f"{'the target' if fraction == 1.0 else f'{fraction:g} × target'} (suite factor "
+             f"{float(how['scaling_suite_factor']):.3g})")
     fig.suptitle(title, fontsize=11)
     caption_line(fig, caption)
     return freeze(fig)
@@ -462,6 +473,10 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     """
     ds = ds.assign(interpenetration_max=ds[[f"I_{c}_max" for c in "ABCD"]].to_array().max("variable"))
     kind, drawn, fixed = _plan(ds)
+    records = ds.sizes.get("record", 0)
+    if kind == "map" and fixed.get("record", 0) > 1 and "statistic" in ds.coords:  # a suite: its statistics
+        ds = _suite_maps(ds)
+        fixed = {"statistic": ds.sizes["statistic"], **{n: size for n, size in fixed.items() if n != "record"}}
     # maps: a further categorical axis (a prototype) gets rows of its own, one per category and model
     group = next((n for n, size in fixed.items() if kind == "map" and size > 1 and _categorical(ds, n)), None)
     fixed = {n: size for n, size in fixed.items() if n != group}
@@ -476,7 +491,9 @@ def maps(ds, marks: dict, caption: str) -> Figure:
         rows = [(m, {group: str(v)} if group else {}) for m in models for v in (ds[group].values if group else [0])]
         fig, axs = new_figure((4.2 * len(variables) + 0.6, 3.5 * len(rows) + 1.6), len(rows), len(variables))
         legend = _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group)
-        what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}" + (f" per {_symbol(group)}" if group else "")
+        what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}" + (
+            f": statistics over its {records} records" if group == "statistic" else
+            f" per {_symbol(group)}" if group else "")
     else:
         fig, axs = new_figure((4.1 * len(variables), 5.0), 1, len(variables))
         draw = _draw_lines if kind == "lines" else _draw_categories
@@ -486,6 +503,28 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     if fixed:
         title += "\n" + _fixed_note(ds, fixed)
     return _complete(fig, title, caption, legend)
+
+
+#: the statistics a suite's maps draw, in place of its records (``_suite_maps``): the design values of
+#: EN 1998-1 §4.3.3.4.3 from seven records on and from fewer (both defined wherever a record has a value)
+SUITE_MAPS = {"mean": "mean of the records", "max": "largest of the records"}
+
+
+def _suite_maps(ds):
+    """A suite's maps: rows of its statistics over the records (SUITE_MAPS) in place of a row per record
+    (seven to eleven records would make a figure twenty rows tall that shows no design value); a
+    cell flagged where a record's pad reaches a ring, failed where every record's run fails."""
+    from .combine import statistics
+
+    stats = statistics(ds).sel(statistic=list(SUITE_MAPS))
+    out = {name: stats[f"{name}_suite"] for name, *_ in SUMMARY_VARIABLES if f"{name}_suite" in stats}
+    shape = next(iter(out.values()))
+    out["capacity_exceeded"] = (stats["records_capacity_exceeded"] > 0).broadcast_like(shape)
+    out["failed"] = (stats["records_failed"] == ds.sizes["record"]).broadcast_like(shape)
+    labels = np.array([SUITE_MAPS[str(s)] for s in stats["statistic"].values])
+    suite = xr.Dataset(out).assign_coords(statistic=("statistic", labels))
+    suite.attrs = {**ds.attrs, "sweep_axes": ds.attrs["sweep_axes"].replace("record", "statistic")}
+    return suite
 
 
 def _defined(ds, name, model):
@@ -550,12 +589,17 @@ def _case_flags(sel):
 
 def _flag_labels(ds, models, dims):
     """Legend labels of the capacity and failure marks with their counts per model."""
+    suite = "statistic" in dims  # a suite's maps: cells, whichever statistic
+    dims = [d for d in dims if d != "statistic"]
     total = int(np.prod([ds.sizes[d] for d in dims]))
-    counts = [_flags(ds, m, *dims) for m in models]
+    counts = [_flags(ds.isel(statistic=0) if suite else ds, m, *dims) for m in models]
     cap = ", ".join(f"{_title(m)} {int(c.sum())}" for m, (c, _) in zip(models, counts))
     fail = ", ".join(f"{_title(m)} {int(f.sum())}" for m, (_, f) in zip(models, counts))
     ended = " (on the bottom edge where capacity: error ended the case there)" \
         if str(ds.attrs.get("capacity_policy")) == "error" else ""
+    if suite:
+        return (f"a record's pad reaches a retaining ring ({cap} of {total} cells)",
+                f"every record's run failed, no result ({fail} of {total} cells)")
     return (f"pad reaches a retaining ring ({cap} of {total}){ended}", f"solver failed, no result ({fail} of {total})")
 
 
@@ -720,13 +764,13 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
                 values = factor * sel[name].values
                 shape = {} if group is None else {"marker": GROUP_MARKERS[g % len(GROUP_MARKERS)]}
                 marker = dict(_marker(model), **shape)
-                ax.plot(x, values, **style, **marker)
+                ax.plot(x, values, **style, **marker, **(SUITE_RECORDS if f"{name}_suite" in ds else {}))
                 capacity, failed = _case_flags(sel)
                 _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 suite = ds[f"{name}_suite"].sel(model=model)
-                for statistic, look in SUITE_LINES.items():
-                    ax.plot(x, factor * suite.sel(statistic=statistic).values, color=style["color"], **look)
+                for statistic, look in _suite_looks(style).items():
+                    ax.plot(x, factor * suite.sel(statistic=statistic).values, **look)
         _failure_marks(ax, failures)
         _line_marks(ax, ds, x_name, marks)
         _scale(ax, "x", x_name, x)
@@ -739,6 +783,13 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
     if "statistic" in ds.coords:
         legend.append(_suite_handles())
     return legend + [_flag_handles(ds, models, drawn)]
+
+
+def _suite_looks(style):
+    """How a model (its line ``style``) draws the suite's statistics: the mean in its own line, wider, over
+    the faded record curves; the 84th percentile dotted."""
+    mean = dict(style, lw=style.get("lw", 1.5) + SUITE_WIDER, zorder=SUITE_LINES["mean"]["zorder"])
+    return {"mean": mean, "p84_lognormal": dict(SUITE_LINES["p84_lognormal"], color=style["color"])}
 
 
 def _suite_handles():
@@ -772,9 +823,8 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
             capacity, failed = _case_flags(sel)
             _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
-                for statistic, look in SUITE_LINES.items():
-                    ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)),
-                               color=style["color"], **look)
+                for statistic, look in _suite_looks(style).items():
+                    ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)), **look)
         _failure_marks(ax, failures)
         _line_marks(ax, ds, name_axis, marks)
         ax.set_xticks(x, _shortened(names), rotation=30 if name_axis == "record" else 0,

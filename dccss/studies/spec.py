@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -267,8 +268,9 @@ def _excitations(config, axes, base, geometry):
     if not isinstance(spec, dict):
         raise StudyError(f"excitation: expected a mapping, got {type(spec).__name__} {spec!r}")
     if "scale" in axes and isinstance(spec.get("scale"), dict):
-        raise StudyError("sweep.scale: the records are scaled to a spectral acceleration (excitation.scale); a "
-                         "scale axis would multiply it again: give the target you want, or one study per target")
+        raise StudyError("sweep.scale: the records are scaled to a target spectrum or spectral acceleration "
+                         "(excitation.scale); a scale axis would multiply that again: give the target you want, "
+                         "or one study per target")
     if "record" not in config["sweep"]:
         return _swept_excitation(excitation_from(spec, base, geometry), axes, spec), {}, axes
     if "file" in spec:
@@ -276,11 +278,15 @@ def _excitations(config, axes, base, geometry):
                          "kind and processing (scale, window, baseline, units) without a file")
     entries = record_entries(config["sweep"]["record"], base)
     axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
-    records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
+    scale = spec.get("scale")
+    first = isinstance(scale, dict) and scale.get("to") == "spectrum" and "suite_factor" not in scale
+    with warnings.catch_warnings():
+        if first:  # each record read as a suite of one: what it says of its scale is said again of the suite's
+            warnings.simplefilter("ignore")
+        records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
     if len({e.components for e in records.values()}) > 1:
         raise StudyError("sweep.record: mixes one- and two-component records; a suite is one or the other")
-    scale = spec.get("scale")
-    if isinstance(scale, dict) and scale.get("to") == "spectrum" and "suite_factor" not in scale:
+    if first:
         # each record was scaled as a suite of one: now all of them with the suite's factor
         spectra = [underlying(e).spectrum for e in records.values()]
         suite = suite_factors([s["unscaled"] for s in spectra], spectra[0]["target"], scale.get("fraction", 1.0),

@@ -25,11 +25,13 @@ def _paths(files):
 
 def study_files(record=None):
     """Files the study reads (a recorded or tabulated ground motion; with a record axis, those of
-    ``record``, or of every record): inputs of its jobs."""
+    ``record``, or of every record; a target spectrum the records are scaled to): inputs of its jobs."""
+    scale = STUDY.excitation_spec.get("scale")
+    target = _paths(scale["target"]) if isinstance(scale, dict) and isinstance(scale.get("target"), str) else []
     if STUDY.records:
         names = [record] if record else list(STUDY.record_entries)
-        return [p for name in names for p in _paths(STUDY.record_entries[name])]
-    return _paths(STUDY.excitation_spec.get("file", []))
+        return [p for name in names for p in _paths(STUDY.record_entries[name])] + target
+    return _paths(STUDY.excitation_spec.get("file", [])) + target
 
 
 def chunk_label(k):
