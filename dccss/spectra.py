@@ -28,7 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .mechanics.structure import G, Ground, solve
+from .mechanics import backend
+from .mechanics.structure import LINE_WORK, G, Ground, solve
 
 #: the definitions of a pair's spectral acceleration that ``scale_factor`` knows
 PAIR_DEFINITIONS = ("rotd50", "rotd100", "geometric_mean")
@@ -48,26 +49,26 @@ def _check(period, damping):
         raise ValueError(f"damping must be a ratio 0 <= damping < 1, got {damping!r}")
 
 
-def response(time, acceleration, period, damping=0.05) -> np.ndarray:
+def response(time, acceleration, period, damping=0.05, compiled=None) -> np.ndarray:
     """The oscillator's displacement u (m) at the sample times: (n,) for (n,) acceleration (m/s²),
-    (n, 2) for two components."""
+    (n, 2) for two components (``compiled``: as ``mechanics.structure.solve``)."""
     _check(period, damping)
     omega = 2 * np.pi / period
     ground = Ground.from_samples(time, acceleration)
-    u = solve(ground, np.asarray(time, dtype=float), G / omega**2, 0.0, damping).stroke
+    u = solve(ground, np.asarray(time, dtype=float), G / omega**2, 0.0, damping, compiled).stroke
     return u[:, 0] if np.ndim(acceleration) == 1 else u
 
 
-def psa(time, acceleration, period, damping=0.05) -> float:
+def psa(time, acceleration, period, damping=0.05, compiled=None) -> float:
     """Pseudo-spectral acceleration (m/s²) of one component at ``period`` (s) and ``damping``."""
     _check(period, damping)
-    return float((2 * np.pi / period) ** 2 * np.max(np.abs(response(time, acceleration, period, damping))))
+    return float((2 * np.pi / period) ** 2 * np.max(np.abs(response(time, acceleration, period, damping, compiled))))
 
 
-def rotd(time, ax, ay, period, damping=0.05, percentile=50.0) -> float:
+def rotd(time, ax, ay, period, damping=0.05, percentile=50.0, compiled=None) -> float:
     """RotD<percentile> (m/s²) of a pair: the percentile over orientations 0-179° of the PSA of the
     component rotated by each."""
-    u = response(time, np.column_stack([ax, ay]), period, damping)
+    u = response(time, np.column_stack([ax, ay]), period, damping, compiled)
     return float((2 * np.pi / period) ** 2 * np.percentile(orientation_peaks(u), percentile))
 
 
@@ -87,28 +88,31 @@ def orientation_peaks(u, first=64) -> np.ndarray:
     return np.max(np.abs(c * u[:, :1] + s * u[:, 1:]), axis=0)
 
 
-def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50") -> float:
+def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50", compiled=None) -> float:
     """The spectral acceleration (m/s²) of a ``records.Record`` or of a ``records.RecordPair``
-    (``definition``: rotd50, rotd100 or geometric_mean)."""
+    (``definition``: rotd50, rotd100 or geometric_mean; ``compiled``: as ``mechanics.structure.solve``)."""
     if definition not in PAIR_DEFINITIONS:
         raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
     if not hasattr(excitation, "acceleration") and not hasattr(excitation, "x"):
         raise TypeError(f"excitation must be a Record or a RecordPair (its samples' accelerations), got "
                         f"{type(excitation).__name__}")
     if excitation.components == 1:
-        return psa(excitation.time, excitation.acceleration, period, damping)
+        return psa(excitation.time, excitation.acceleration, period, damping, compiled)
     x, y = excitation.x, excitation.y
     if definition in ("rotd50", "rotd100"):
-        return rotd(excitation.time, x.acceleration, y.acceleration, period, damping, float(definition[4:]))
+        return rotd(excitation.time, x.acceleration, y.acceleration, period, damping, float(definition[4:]), compiled)
     if definition == "geometric_mean":
-        return float(np.sqrt(psa(x.time, x.acceleration, period, damping) * psa(y.time, y.acceleration, period,
-                                                                               damping)))
+        return float(np.sqrt(psa(x.time, x.acceleration, period, damping, compiled)
+                             * psa(y.time, y.acceleration, period, damping, compiled)))
     raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
 
 
 def spectrum(excitation, periods, damping=0.05, definition="rotd50") -> np.ndarray:
-    """``spectral_acceleration`` (m/s²) of ``excitation`` at each of ``periods`` (s)."""
-    return np.array([spectral_acceleration(excitation, float(T), damping, definition) for T in periods])
+    """``spectral_acceleration`` (m/s²) of ``excitation`` at each of ``periods`` (s): compiled (the same
+    values) when the periods' work together is large, as a run's steps (``mechanics.backend``)."""
+    n = len(getattr(excitation, "time", ()))
+    compiled = backend.choose(len(periods) * max(n - 1, 1), LINE_WORK) == "numba"
+    return np.array([spectral_acceleration(excitation, float(T), damping, definition, compiled) for T in periods])
 
 
 def range_periods(low, high, table=()) -> np.ndarray:

@@ -296,6 +296,37 @@ def test_the_two_component_response_compiled_equals_interpreted(monkeypatch):
         assert np.array_equal(interpreted, compiled)
 
 
+def test_the_one_component_response_compiled_equals_interpreted():
+    """The exact one-component solution compiled (a long record, a spectrum's periods) and interpreted (a short
+    one) gives the same bits: records with stops, long sticking, breakaways and free sliding (μ = 0)."""
+    from dccss.mechanics import structure
+
+    rng = np.random.default_rng(11)
+    mixed = 0
+    for trial in range(8):
+        n = int(rng.integers(200, 1500))
+        t = np.cumsum(np.r_[0.0, rng.uniform(0.004, 0.011, n - 1)])
+        a = np.convolve(rng.normal(size=n), np.ones(15) / 15, "same") * rng.uniform(1.0, 12.0)
+        ground = Ground.from_samples(t, a)
+        for mu, zeta in ((0.0, 0.0), (0.0, 0.05), (0.03, 0.0), (0.08, 0.1)):
+            args = (ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.3, zeta, mu * G)
+            interpreted = structure._line(*args, compiled=False)
+            compiled = structure._line(*args, compiled=True)
+            for x, y in zip(interpreted, compiled):
+                assert np.array_equal(x, y), (trial, mu, zeta)
+            mixed += bool(interpreted[3].any() and not interpreted[3].all())  # stops and breakaways both
+    assert mixed >= 6
+
+
+def test_a_one_component_chatter_is_an_error_naming_the_time(monkeypatch):
+    from dccss.mechanics import structure
+
+    monkeypatch.setattr(structure, "MAX_PHASES", 0)
+    ground = Ground.from_samples([0.0, 0.01, 0.02], [0.0, 1.0, 0.0])
+    with pytest.raises(RuntimeError, match=r"more than 0 stick/slip phases in the sample interval at t = 0 s"):
+        structure._line(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=False)
+
+
 def test_a_two_component_step_that_cannot_meet_the_tolerance_is_an_error_naming_the_time(monkeypatch):
     from dccss.mechanics import structure
 

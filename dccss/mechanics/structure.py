@@ -204,16 +204,17 @@ def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
     return solve(ground, times, float(geometry.L), structure.device_friction(geometry), structure.damping)
 
 
-def solve(ground: Ground, times, L, mu, zeta) -> Response:
-    """:func:`respond` for any μ >= 0 (μ = 0: free sliding, the pendulum alone) and 0 <= ζ < 1."""
+def solve(ground: Ground, times, L, mu, zeta, compiled=None) -> Response:
+    """:func:`respond` for any μ >= 0 (μ = 0: free sliding, the pendulum alone) and 0 <= ζ < 1;
+    ``compiled`` None: the kernels compiled for a long record, interpreted for a short one."""
     refined, index = ground.refined(times)
     omega = math.sqrt(G / L)
     components = refined.a0.shape[1]
     if components == 1:
-        u, v, z, stick = _line(refined.time, refined.a0[:, 0], refined.a1[:, 0], omega, zeta, mu * G)
+        u, v, z, stick = _line(refined.time, refined.a0[:, 0], refined.a1[:, 0], omega, zeta, mu * G, compiled)
         u, v, z = u[:, None], v[:, None], z[:, None]
     else:
-        u, v, z, stick = _plane(refined, omega, zeta, mu * G)
+        u, v, z, stick = _plane(refined, omega, zeta, mu * G, compiled)
     span = slice(index[0], None)  # to the record's end, past the last requested time
     peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, u / L + mu * z))
     u, v, z, stick = u[index], v[index], z[index], stick[index]
@@ -224,15 +225,12 @@ def solve(ground: Ground, times, L, mu, zeta) -> Response:
 MAX_PHASES = 10_000
 
 
-def _count(phases, t):
-    if phases >= MAX_PHASES:
-        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
-                           f"t = {t:g} s: the friction chatters; report the record and the structure")
-    return phases + 1
-
-
 # --- one component: exact ----------------------------------------------------------------------
+#
+# ``line`` is written in the scalar subset Numba compiles, as ``plane`` below: compiled for a long
+# record (or many, a spectrum's periods), interpreted for a short one, with the same bits.
 
+@scalar.jit
 def _slide(u0, v0, p0, p1, omega, zeta, tau):
     """(u, v) at tau of ü + 2ζω u̇ + ω² u = p0 + p1 t from (u0, v0) at t = 0 (0 <= ζ < 1)."""
     beta = p1 / omega**2
@@ -246,6 +244,7 @@ def _slide(u0, v0, p0, p1, omega, zeta, tau):
     return u, v
 
 
+@scalar.jit
 def _stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
     """The first tau in (0, tau_end] where sign * u̇ falls to 0 while sliding (sign = ±1), or -1."""
     pieces = max(1, math.ceil(omega * tau_end / 0.25))
@@ -276,11 +275,13 @@ def _stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
     return -1.0
 
 
+@scalar.jit
 def _acceleration(u0, v0, p0, p1, omega, zeta, tau):
     u, v = _slide(u0, v0, p0, p1, omega, zeta, tau)
     return p0 + p1 * tau - 2 * zeta * omega * v - omega**2 * u
 
 
+@scalar.jit
 def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
     """The root of sign * u̇ in (lo, hi], where it is > 0 at lo (or lo = 0) and <= 0 at hi."""
     for _ in range(200):
@@ -294,12 +295,11 @@ def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
     return hi
 
 
-def _line(time, a0, a1, omega, zeta, friction):
-    """Exact one-component history at the interval ends: u, u̇, z, sticking (see the module docstring);
-    ``friction`` is μ g (m/s²)."""
-    n = time.size
-    u, v, z = np.zeros(n), np.zeros(n), np.zeros(n)
-    stick = np.zeros(n, dtype=bool)
+def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
+    """The exact one-component history at the interval ends into u, u̇, z and sticking (see the module
+    docstring; ``friction`` is μ g, m/s²): (DONE, n - 1), or (CHATTER, k) at an interval k of more than
+    MAX_PHASES stick/slip phases."""
+    n = len(time)
     x, w = 0.0, 0.0  # u, u̇
     sliding, sign = friction == 0.0, 1.0
     demand = -a0[0]
@@ -311,7 +311,9 @@ def _line(time, a0, a1, omega, zeta, friction):
         h = time[k + 1] - time[k]
         tau, phases = 0.0, 0
         while tau < h:
-            phases = _count(phases, time[k])
+            if phases >= MAX_PHASES:
+                return CHATTER, k
+            phases += 1
             b0, b1 = a0[k] + a1[k] * tau, a1[k]  # the ground's acceleration from tau on
             if not sliding:
                 # sticking: the demand -a_g - ω² u is a straight line in t; it ends at ±μ g
@@ -348,6 +350,25 @@ def _line(time, a0, a1, omega, zeta, friction):
             stick[k + 1], z[k + 1] = False, (sign if friction > 0 else 0.0)
         else:
             stick[k + 1], z[k + 1] = True, (-b - omega**2 * x) / friction
+    return DONE, n - 1
+
+
+def _line(time, a0, a1, omega, zeta, friction, compiled=None):
+    """One-component history at the interval ends: u, u̇, z, sticking (``line``); ``compiled`` None:
+    compiled for a long record (``backend``), interpreted for a short one."""
+    from . import backend
+
+    n = time.size
+    if compiled is None:
+        compiled = backend.choose(n - 1, LINE_WORK) == "numba"
+    run = scalar.kernel(line) if compiled else line
+    u, v, z = np.zeros(n), np.zeros(n), np.zeros(n)
+    stick = np.zeros(n, dtype=bool)
+    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
+                    np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), u, v, z, stick)
+    if status == CHATTER:
+        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
+                           f"t = {time[k]:g} s: the friction chatters; report the record and the structure")
     return u, v, z, stick
 
 
@@ -374,6 +395,8 @@ MIN_STEP, BRACKET = 1e-14, 4 * 2.220446049250313e-16
 #: the cost of a sample interval interpreted, in the planar kernels' case-steps (``backend.choose``):
 #: about 0.5 ms
 INTERVAL_WORK = 25
+#: the same of one component's sample interval (``line``): about 5 µs sliding, more at a stop
+LINE_WORK = 1
 #: plane's status: done, the friction chatters (MAX_PHASES), a step too short
 DONE, CHATTER, FAILED = 0, 1, 2
 
@@ -699,6 +722,7 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None):
 
 
 def warm():
-    """Compile (or load) the two-component kernel into the on-disk cache."""
+    """Compile (or load) the one- and two-component kernels into the on-disk cache."""
     ground = Ground.from_samples([0.0, 0.01, 0.02], [[0.0, 0.0], [1.0, 0.5], [0.0, 0.0]])
     _plane(ground, 2.0, 0.0, 0.05 * G, compiled=True)
+    _line(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=True)
