@@ -303,7 +303,34 @@ def _scaled_over_range(identity, read, whole, spec, pair, key, base):
     nowhere in the range below ``fraction`` × target). ``identity``: the files and processing whose
     spectrum is computed (once per process); ``whole(factor)``: the record before its window."""
     from .records import G
-    from .spectra import PAIR_DEFINITIONS, range_periods, suite_factors
+    from .spectra import range_periods, suite_factors
+
+    table, periods, damping, definition, fraction, individual, suite = range_scaling(spec, pair, key, base)
+    grid = range_periods(*periods, table[0])
+    unscaled = _range_spectrum(identity, tuple(grid), damping, definition, key, whole)
+    target = np.interp(grid, *table) * G
+    if not (unscaled > 0).all():
+        raise CaseError(f"{key}: the record's spectral acceleration is {unscaled.min()!r} at a period of the range: it "
+                        f"cannot be scaled to a target")
+    factors, fitted, own = suite_factors(unscaled[None], target, fraction, individual)
+    if suite is None:
+        suite, factor = own, float(factors[0])
+    else:
+        factor = suite * float(fitted[0])  # as suite_factors does
+    scaled = read(factor)
+    scaled.scaling = {"record_scaled_to": "spectrum", "record_scaling_periods_s": np.array(periods),
+                      "record_scaling_damping": damping, "record_scaling_fraction": fraction,
+                      "record_scaling_fit": float(fitted[0]), "record_scaling_suite_factor": suite,
+                      **({"record_scaling_definition": definition} if pair else {})}
+    scaled.spectrum = {"periods": grid, "unscaled": unscaled, "target": target}  # m/s²
+    return scaled
+
+
+def range_scaling(spec, pair, key="excitation.scale", base=Path(".")):
+    """The keys of a scaling over a period range, checked (every mistake at once): (the target's periods
+    and Sa in g, the range, damping, definition, fraction, individual, the suite's factor or None);
+    ``pair``: whether the record is a pair (a definition is a pair's)."""
+    from .spectra import PAIR_DEFINITIONS
 
     check_keys(spec, key, ("to", "target", "periods"),
                ("damping", "definition", "fraction", "individual", "suite_factor"))
@@ -330,24 +357,7 @@ def _scaled_over_range(identity, read, whole, spec, pair, key, base):
         problems.add("periods", f"{key}.periods: the range {list(periods)} s is not within the target's periods "
                                 f"{table[0][0]:g} to {table[0][-1]:g} s")
     problems.raise_if_any()
-    grid = range_periods(*periods, table[0])
-    unscaled = _range_spectrum(identity, tuple(grid), damping, definition, key, whole)
-    target = np.interp(grid, *table) * G
-    if not (unscaled > 0).all():
-        raise CaseError(f"{key}: the record's spectral acceleration is {unscaled.min()!r} at a period of the range: it "
-                        f"cannot be scaled to a target")
-    factors, fitted, own = suite_factors(unscaled[None], target, fraction, individual)
-    if suite is None:
-        suite, factor = own, float(factors[0])
-    else:
-        factor = suite * float(fitted[0])  # as suite_factors does
-    scaled = read(factor)
-    scaled.scaling = {"record_scaled_to": "spectrum", "record_scaling_periods_s": np.array(periods),
-                      "record_scaling_damping": damping, "record_scaling_fraction": fraction,
-                      "record_scaling_fit": float(fitted[0]), "record_scaling_suite_factor": suite,
-                      **({"record_scaling_definition": definition} if pair else {})}
-    scaled.spectrum = {"periods": grid, "unscaled": unscaled, "target": target}  # m/s²
-    return scaled
+    return table, periods, damping, definition, fraction, individual, suite
 
 
 #: the spectra of records over a period range, by the record's files and processing and the range

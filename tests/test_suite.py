@@ -431,3 +431,19 @@ def test_a_suite_warns_of_the_scales_it_runs_not_of_each_records_scale_alone(tmp
     said = [str(w.message) for w in caught if "peak ground acceleration" in str(w.message)]
     scales = {name: e.attrs()["record_scale"] for name, e in study.records.items()}
     assert len(said) == 2 and all(any(f"scale ({f:g})" in m for m in said) for f in scales.values()), said
+
+
+def test_a_suites_range_scaling_errors_are_the_studys_not_a_records(suite):
+    """A mistake in the suite's scaling is reported once, as the study file's (before: once per record,
+    each ending "(record 'NAME')"); a record's own problem still names the record."""
+    bad = {**RANGE, "periods": [3.0, 1.0], "fraction": 0}
+    config = {**CONFIG, "excitation": {**CONFIG["excitation"], "scale": bad}, "sweep": {"record": ["records/*.AT2"]}}
+    with pytest.raises(StudyError) as err:
+        Study.from_config(config, suite)
+    assert err.value.messages == ["excitation.scale.periods: expected T_low < T_high, got [3.0, 1.0]",
+                                  "excitation.scale.fraction: must be > 0, got 0.0"]
+    long = {**RANGE, "target": {"period": [0.1, 100.0], "sa": [0.3, 0.1]}, "periods": [1.0, 50.0]}
+    config["excitation"]["scale"] = long
+    with pytest.raises(StudyError, match=r"excitation.scale.periods: 50 s is longer than the record .* \(record "
+                                         r"'RSN11_NORTH'\)"):
+        Study.from_config(config, suite)

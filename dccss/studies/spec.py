@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import excitation_from, geometry_from, newton_from, structure_from
+from ..case import excitation_from, geometry_from, newton_from, range_scaling, structure_from
 from ..checks import CaseError, Problems, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step, underlying
 from ..mechanics import registry
@@ -279,6 +279,11 @@ def _excitations(config, axes, base, geometry):
     entries = record_entries(config["sweep"]["record"], base)
     axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
     scale = spec.get("scale")
+    if isinstance(scale, dict) and scale.get("to") == "spectrum":  # the suite's scaling, checked once
+        try:
+            range_scaling(scale, all(isinstance(e, list) for e in entries.values()), "excitation.scale", base)
+        except CaseError as err:
+            raise StudyError(*err.messages) from None
     first = isinstance(scale, dict) and scale.get("to") == "spectrum" and "suite_factor" not in scale
     with warnings.catch_warnings():
         if first:  # each record read as a suite of one: what it says of its scale is said again of the suite's
