@@ -366,8 +366,9 @@ _SPECTRA = {}
 
 def _range_spectrum(identity, grid, damping, definition, key, whole):
     """The whole record's (unwindowed, unscaled) spectrum (m/s²) at the periods ``grid``, computed once
-    per process (a study reads a suite's records twice: on their own, then with the suite's factor)."""
-    from .spectra import spectrum
+    per process (a study reads a suite's records twice: on their own, then with the suite's factor)
+    and kept on disk (``spectra.cached_spectrum``)."""
+    from .spectra import cached_spectrum
 
     files = identity[0]
     stamp = tuple((Path(f).stat().st_mtime_ns, Path(f).stat().st_size) for f in files if Path(f).exists())
@@ -378,7 +379,7 @@ def _range_spectrum(identity, grid, damping, definition, key, whole):
         if grid[-1] > duration:
             raise CaseError(f"{key}.periods: {grid[-1]:g} s is longer than the record ({duration:g} s): an oscillator "
                             f"of that period has not completed one cycle of response; give periods within the record")
-        _SPECTRA[cache] = spectrum(record, grid, damping, definition)
+        _SPECTRA[cache] = cached_spectrum(record, grid, damping, definition)
     return _SPECTRA[cache]
 
 

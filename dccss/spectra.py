@@ -26,6 +26,13 @@ its mean spectrum at or above a fraction of the target at every period of the ra
 
 from __future__ import annotations
 
+import functools
+import hashlib
+import json
+import os
+import tempfile
+from pathlib import Path
+
 import numpy as np
 
 from .mechanics import backend
@@ -113,6 +120,55 @@ def spectrum(excitation, periods, damping=0.05, definition="rotd50") -> np.ndarr
     n = len(getattr(excitation, "time", ()))
     compiled = backend.choose(len(periods) * max(n - 1, 1), LINE_WORK) == "numba"
     return np.array([spectral_acceleration(excitation, float(T), damping, definition, compiled) for T in periods])
+
+
+def cached_spectrum(excitation, periods, damping=0.05, definition="rotd50") -> np.ndarray:
+    """``spectrum``, kept on disk: a study reads its records, and a suite scaled over a period range
+    computes their spectra, each time Snakemake starts (and in each job on a cluster). The key is the
+    record's attributes (its files' SHA-256 and processing), the periods, damping and definition, and a
+    digest of the code that computes it; a cache that cannot be written is skipped."""
+    folder = _cache_folder()
+    periods = np.asarray(periods, dtype=float)
+    key = hashlib.sha256(json.dumps([excitation.attrs(), damping, definition, _code_digest()], sort_keys=True,
+                                    default=str).encode() + periods.tobytes()).hexdigest()
+    path = None if folder is None else folder / f"{key}.npy"
+    if path is not None and path.is_file():
+        try:
+            values = np.load(path)
+            if values.shape == periods.shape:
+                return values
+        except (OSError, ValueError):
+            pass  # a damaged entry: computed again
+    values = spectrum(excitation, periods, damping, definition)
+    if path is not None:
+        try:
+            with tempfile.NamedTemporaryFile(dir=folder, suffix=".npy", delete=False) as out:
+                np.save(out, values)
+            os.replace(out.name, path)  # whole or not at all, whatever other processes do
+        except OSError:
+            pass
+    return values
+
+
+def _cache_folder():
+    """``$XDG_CACHE_HOME/dccss/spectra`` (or ``~/.cache/...``), None where it cannot be made."""
+    folder = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "dccss" / "spectra"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder if os.access(folder, os.W_OK) else None
+
+
+@functools.cache
+def _code_digest() -> str:
+    """A digest of the sources a spectrum depends on: this module, the records' processing and the
+    mechanics (the oscillator's solution)."""
+    from .mechanics.scalar import source_digest
+
+    here = Path(__file__).parent
+    mine = hashlib.sha256(b"".join((here / f).read_bytes() for f in ("spectra.py", "records.py"))).hexdigest()
+    return mine[:16] + source_digest(here / "mechanics")
 
 
 def range_periods(low, high, table=()) -> np.ndarray:

@@ -250,3 +250,29 @@ def test_the_orientation_peaks_are_those_over_every_sample():
             u = rng.normal(size=(n, 2)) * shape
             every = np.max(np.abs(c[None, :] * u[:, :1] + s[None, :] * u[:, 1:]), axis=0)
             assert np.array_equal(spectra.orientation_peaks(u), every)
+
+
+def test_a_spectrum_is_computed_once_and_then_read_from_the_cache(tmp_path, monkeypatch):
+    """Snakemake reads a study at each start (and in each cluster job): a suite's spectra are kept on disk by
+    the record's attributes, periods, damping, definition and code; read back bit for bit."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    record = Record.from_file(RECORDS / "synthetic.AT2")
+    periods = spectra.range_periods(1.0, 2.0)
+    first = spectra.cached_spectrum(record, periods)
+    assert np.array_equal(first, spectra.spectrum(record, periods))
+    assert len(list((tmp_path / "dccss/spectra").glob("*.npy"))) == 1
+
+    def computed(*args, **kwargs):
+        raise AssertionError("computed again")
+
+    monkeypatch.setattr(spectra, "spectrum", computed)
+    assert np.array_equal(spectra.cached_spectrum(record, periods), first)
+    with pytest.raises(AssertionError, match="computed again"):  # another damping, another record: computed
+        spectra.cached_spectrum(record, periods, damping=0.02)
+    with pytest.raises(AssertionError, match="computed again"):
+        spectra.cached_spectrum(Record.from_file(RECORDS / "synthetic.AT2", scale=2.0), periods)
+    # a cache that cannot be written is skipped
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "file"))
+    (tmp_path / "file").write_text("not a folder")
+    monkeypatch.setattr(spectra, "spectrum", lambda *a, **k: first)
+    assert np.array_equal(spectra.cached_spectrum(record, periods), first)
