@@ -245,13 +245,13 @@ def record_from(value, base: Path, key="excitation"):
         """The record before its window (for its spectrum): a pair's components where both have samples."""
         try:
             return read(factor, None)
-        except CaseError:
+        except CaseError as err:
             if not isinstance(file, list) or window is None:
                 raise
             try:  # components of different lengths, which the window cuts to the same times
                 x, y = (Record.from_file(base / f, baseline=baseline, units=units) for f in file)
             except ValueError:
-                raise CaseError(f"{key}.file: the pair's files cannot be read") from None
+                raise err from None  # not a matter of lengths: the pair's own error
             return read(factor, (max(x.t_start, y.t_start), min(x.t_end, y.t_end)))
 
     if spectral is None:

@@ -191,11 +191,6 @@ def _complete(fig, title, caption, groups):
 
 
 # --- a suite scaled to a spectrum ---------------------------------------------------------------
-def scaled_over_range(ds) -> bool:
-    """Whether a study's records were scaled over a period range (``spectra``'s figure is drawn)."""
-    return "record_sa" in ds
-
-
 def spectra(ds, caption: str) -> Figure:
     """A suite scaled over a period range: each record's spectrum as scaled, their mean and the target
     (and the fraction of it the mean must reach), in g, over the range's periods."""
@@ -523,7 +518,8 @@ def _suite_maps(ds):
     out["failed"] = (stats["records_failed"] == ds.sizes["record"]).broadcast_like(shape)
     labels = np.array([SUITE_MAPS[str(s)] for s in stats["statistic"].values])
     suite = xr.Dataset(out).assign_coords(statistic=("statistic", labels))
-    suite.attrs = {**ds.attrs, "sweep_axes": ds.attrs["sweep_axes"].replace("record", "statistic")}
+    axes = ["statistic" if name == "record" else name for name in ds.attrs["sweep_axes"].split()]
+    suite.attrs = {**ds.attrs, "sweep_axes": " ".join(axes)}
     return suite
 
 
