@@ -135,10 +135,10 @@ def cached_spectrum(excitation, periods, damping=0.05, definition="rotd50") -> n
     if path is not None and path.is_file():
         try:
             values = np.load(path)
-            if values.shape == periods.shape:
-                return values
-        except (OSError, ValueError):
-            pass  # a damaged entry: computed again
+            if values.shape == periods.shape and values.dtype == np.float64 and (values > 0).all():
+                return values  # a spectrum: positive accelerations (also never NaN)
+        except (OSError, ValueError, EOFError):
+            pass  # a damaged entry (cut short, empty, not a spectrum): computed again
     values = spectrum(excitation, periods, damping, definition)
     if path is not None:
         try:

@@ -271,6 +271,16 @@ def test_a_spectrum_is_computed_once_and_then_read_from_the_cache(tmp_path, monk
         spectra.cached_spectrum(record, periods, damping=0.02)
     with pytest.raises(AssertionError, match="computed again"):
         spectra.cached_spectrum(Record.from_file(RECORDS / "synthetic.AT2", scale=2.0), periods)
+    # a damaged entry (empty, cut short, not a spectrum) is computed again and replaced
+    entry = next((tmp_path / "dccss/spectra").glob("*.npy"))
+    monkeypatch.setattr(spectra, "spectrum", lambda *a, **k: first)
+    for damage in (b"", entry.read_bytes()[:100]):
+        entry.write_bytes(damage)
+        assert np.array_equal(spectra.cached_spectrum(record, periods), first)
+    for wrong in (np.full(periods.shape, np.nan), first.astype(np.int64), -first):
+        np.save(entry, wrong)
+        assert np.array_equal(spectra.cached_spectrum(record, periods), first)
+    assert np.array_equal(np.load(entry), first)
     # a cache that cannot be written is skipped
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "file"))
     (tmp_path / "file").write_text("not a folder")
