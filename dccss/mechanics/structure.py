@@ -367,9 +367,14 @@ def _line(time, a0, a1, omega, zeta, friction, compiled=None):
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
                     np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), u, v, z, stick)
     if status == CHATTER:
-        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
-                           f"t = {time[k]:g} s: the friction chatters; report the record and the structure")
+        raise _chatter(time[k])
     return u, v, z, stick
+
+
+def _chatter(t) -> RuntimeError:
+    """The error of a sample interval (at t, s) of more than MAX_PHASES stick/slip phases."""
+    return RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at t = {t:g} s: "
+                        f"the friction chatters; report the record and the structure")
 
 
 # --- two components: the circular interaction -------------------------------------------------
@@ -713,8 +718,7 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None):
                     np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), float(RTOL),
                     float(ATOL), *_tableau(compiled), *work, u, v, z, stick)
     if status == CHATTER:
-        raise RuntimeError(f"structure: more than {MAX_PHASES} stick/slip phases in the sample interval at "
-                           f"t = {time[k]:g} s: the friction chatters; report the record and the structure")
+        raise _chatter(time[k])
     if status == FAILED:
         raise RuntimeError(f"structure: the two-component integration's step fell below {MIN_STEP:g} s in the "
                            f"sample interval at t = {time[k]:g} s; report the record and the structure")

@@ -279,12 +279,13 @@ def _excitations(config, axes, base, geometry):
     entries = record_entries(config["sweep"]["record"], base)
     axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
     scale = spec.get("scale")
-    if isinstance(scale, dict) and scale.get("to") == "spectrum":  # the suite's scaling, checked once
+    ranged = isinstance(scale, dict) and scale.get("to") == "spectrum"
+    if ranged:  # the suite's scaling, checked once
         try:
             range_scaling(scale, all(isinstance(e, list) for e in entries.values()), "excitation.scale", base)
         except CaseError as err:
             raise StudyError(*err.messages) from None
-    first = isinstance(scale, dict) and scale.get("to") == "spectrum" and "suite_factor" not in scale
+    first = ranged and "suite_factor" not in scale
     with warnings.catch_warnings():
         if first:  # each record read as a suite of one: what it says of its scale is said again of the suite's
             warnings.simplefilter("ignore")
