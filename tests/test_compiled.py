@@ -262,6 +262,33 @@ def test_capacity_policies(model, capacity):
         assert mine.value.index == ref.value.index and len(mine.value.index) == 2
 
 
+@pytest.mark.parametrize("model", models.MODELS)
+@pytest.mark.parametrize("capacity", ["stop", "error"])
+@pytest.mark.parametrize("kernels", [True, False], ids=["compiled", "interpreted"])
+def test_a_case_stopped_at_its_ring_is_not_stepped_on(model, capacity, kernels):
+    """Without "mark", a case that reached its ring under capacity "stop" or "error" is no longer stepped: a
+    solver failure it would meet later is not raised (stop) and does not come before the ring's error (error);
+    its summaries are those marked runs give. Case 0 passes a ring at 0.04 s and (stick-slip) the solver fails
+    on it at 0.15 s; case 1 stays inside. A batch of one runs the one-case path."""
+    from dccss.excitation import Sine, step_times
+
+    beyond = Sine(0.9, 10.0, 1.0)  # far beyond DFP1's capacity
+    t = step_times(beyond, 0.01)
+    Xg = beyond.displacement(t)[:, None] * np.array([1.0, 0.1])
+    g = Geometry.from_degrees(**TABLE1["DFP1"])
+    for motion in (Xg, Xg[:, :1]):
+        marked = compiled.summarize(model, g, motion, capacity=capacity, options=MARK, times=t, compiled=kernels)
+        if capacity == "stop":
+            assert_same(compiled.summarize(model, g, motion, capacity=capacity, times=t, compiled=kernels), marked)
+            assert not marked["failed"].any() and marked["capacity_time"][0] == pytest.approx(0.04)
+            continue
+        from dccss.mechanics.capacity import CapacityError
+
+        with pytest.raises(CapacityError, match=r"t = 0\.04 s in the case at batch index"):
+            compiled.summarize(model, g, motion, capacity=capacity, times=t, compiled=kernels)
+        assert marked["failed"][0] and marked["failure_time"][0] == pytest.approx(0.04)
+
+
 def test_bad_input_rejected_alike():
     g = Geometry.from_degrees(**TABLE1["DFP1"])
     for call in (partial(compiled.run, "compliant"), partial(oracle.run, "compliant")):

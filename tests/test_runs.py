@@ -186,3 +186,29 @@ def test_an_oscillation_caught_three_steps_before_the_failure_is_explained():
     """At a coarser step the oscillation grows faster (8 times a step here): three steps of it are enough."""
     with pytest.raises(ConvergenceError, match="oscillate from step to step"):
         simulate(DEEP, Sine(0.6, 4.0, 1.6), model="stick_slip", dt=0.004)
+
+
+@pytest.mark.parametrize("kernels", ["python", "numba"])
+@pytest.mark.parametrize("model", ["compliant", "stick_slip"])
+def test_a_sweep_case_stopped_at_its_ring_is_not_stepped_on_to_a_failure(monkeypatch, kernels, model):
+    """capacity "stop" with on_failure "error": case 0 reaches its ring at 0.04 s and (stick-slip) would fail the
+    solver at 0.15 s; stopped there, it is neither stepped nor judged any more, and the sweep completes with its
+    summaries ending at the ring, as with on_failure "mark"; case 1 stays inside."""
+    from dccss.mechanics import backend
+
+    monkeypatch.setenv(backend.ENV, kernels)
+    both = np.stack([X, 0.1 * X], axis=1)
+    out = runs.summaries(model, DFP1, both, times=TIMES, capacity="stop")
+    assert backend.last == kernels
+    assert_same(out, runs.summaries(model, DFP1, both, times=TIMES, capacity="stop",
+                                    options=NewtonOptions(on_failure="mark")))
+    assert list(out["failed"]) == [False, False] and np.isnan(out["failure_time"]).all()
+    assert list(out["capacity_exceeded"]) == [True, False] and out["capacity_time"][0] == pytest.approx(0.04)
+    inside = runs.summaries(model, DFP1, both[:, 1:], times=TIMES, capacity="stop")
+    assert all(np.array_equal(out[k][1:], inside[k], equal_nan=True) for k in out)
+    # the other policies as before: the failure beyond the ring counts under "continue", the ring under "error"
+    if model == "stick_slip":
+        with pytest.raises(ConvergenceError, match=r"batch index \(0,\), step 15"):
+            runs.summaries(model, DFP1, both, times=TIMES)
+    with pytest.raises(CapacityError, match=r"t = 0\.04 s in the case at batch index \(0,\)"):
+        runs.summaries(model, DFP1, both, times=TIMES, capacity="error")

@@ -673,8 +673,10 @@ def summarize(model, geometry, Xg, theta2_0=0.0, *, capacity="continue", progres
     acc[:, STOPPED] = 0.0
     count = np.zeros((N, N_COUNT), dtype=np.int64)
     count[:, REACHED_STEP] = -1
+    # "stop" and "error" end a case at its ring, as its history ends (``run``'s stop_at_ring): it is not
+    # stepped beyond it, so a solver failure there is not one
     batch.run(kernels, options, normals, _no_history(kernels), (now, acc, count, CAPACITY_POLICIES.index(capacity)),
-              compiled=compiled)
+              stop_at_ring=capacity != "continue", compiled=compiled)
     if capacity == "error" and options.on_failure != "mark":
         _raise_capacity(batch, acc, count, shape)
     batch.raise_failure(kernels, geometry, options, times)
