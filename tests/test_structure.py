@@ -218,7 +218,7 @@ def _slide_alone(y0, end, load, stop):
 
 def _circular(load):
     """scipy's right-hand side of the circular interaction under the load (b0, b1, ω², 2ζω, μ g)."""
-    b0, b1, w2, damp, friction = np.array(load[:2]), np.array(load[2:4]), *load[4:]
+    b0, b1, w2, damp, friction = np.array(load[:2]), np.array(load[2:4]), *load[4:7]
 
     def rhs(t, y):
         f, v = -(b0 + b1 * t) - w2 * y[:2], y[2:]
@@ -235,7 +235,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
 
     from dccss.mechanics.structure import ATOL, NONE, REST_SPEED, RTOL, STOP
 
-    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G)
+    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0)
     y0 = [0.01, -0.02, 0.3, 0.1]
     ended, when, y = _slide_alone(y0, 0.5, load, stop=False)
     ours = solve_ivp(_circular(load), (0.0, 0.5), y0, method="DOP853", rtol=RTOL, atol=ATOL)
@@ -244,7 +244,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
     turned = math.degrees(math.atan2(y[3], y[2]) - math.atan2(y0[3], y0[2]))
     assert abs(turned) > 30.0  # a curved path, not a line
 
-    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G)
+    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0)
     y0 = [0.05, -0.03, 0.2, 0.1]
 
     def rest(t, y):
@@ -394,7 +394,7 @@ def test_refining_the_ground_keeps_its_acceleration():
 
 # --- parameters ----------------------------------------------------------------------------------
 
-@pytest.mark.parametrize(("friction", "damping", "key"), [(0.0, 0.0, "friction"), (1.0, 0.0, "friction"),
+@pytest.mark.parametrize(("friction", "damping", "key"), [(-1e-9, 0.0, "friction"), (1.0, 0.0, "friction"),
                                                          (-0.1, 0.0, "friction"), (0.05, -0.01, "damping"),
                                                          (0.05, 1.0, "damping"), (float("nan"), 0.0, "friction"),
                                                          ("0.05", 0.0, "friction")])
@@ -408,7 +408,7 @@ CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic
 
 
 @pytest.mark.parametrize(("structure", "message"), [
-    ({"friction": 0.0}, r"structure\.friction: 0\.0 is outside 0 < μ < 1"),
+    ({"friction": -0.01}, r"structure\.friction: -0\.01 is outside 0 <= μ < 1"),
     ({"friction": 1.2}, r"structure\.friction: 1\.2 is outside"),
     ({"friction": 0.05, "damping": -0.1}, r"structure\.damping: -0\.1 is outside 0 <= ζ < 1"),
     ({"friction": 0.05, "mass": 1.0},
@@ -416,7 +416,7 @@ CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic
     ({"damping": 0.05}, r"structure: missing key\(s\) \['friction'\]"),
     ({"friction": 0.05, "friction_on": "pad"}, r"structure\.friction_on: must be one of \['device', 'surfaces'\]"),
     ({"friction": 0.95, "friction_on": "surfaces"}, r"structure\.friction: 0\.95 on each surface is a device friction "
-                                                    r"1\.044 = μs \(R1 \+ R3\) / L, outside 0 < μ < 1"),
+                                                    r"1\.044 = μs \(R1 \+ R3\) / L, outside 0 <= μ < 1"),
     (0.05, r"structure: expected a mapping"),
 ])
 def test_a_case_file_refuses_a_bad_structure_naming_the_key(structure, message):

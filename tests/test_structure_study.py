@@ -75,8 +75,8 @@ def test_a_study_without_a_structure_key_gets_one_from_its_friction_axis():
 
 
 @pytest.mark.parametrize("changes, message", [
-    (dict(sweep={"friction": [0.02, 1.5]}), r"sweep\.friction\[1\]: 1\.5 is outside 0 < μ < 1"),
-    (dict(sweep={"friction": [0.0]}), r"sweep\.friction\[0\]: 0\.0 is outside"),
+    (dict(sweep={"friction": [0.02, 1.5]}), r"sweep\.friction\[1\]: 1\.5 is outside 0 <= μ < 1"),
+    (dict(sweep={"friction": [-0.01]}), r"sweep\.friction\[0\]: -0\.01 is outside"),
     (dict(sweep={"damping": [0.1, -0.2]}), r"sweep\.damping\[1\]: -0\.2 is outside 0 <= ζ < 1"),
     (dict(structure={"damping": 0.1}, sweep={"amplitude": [0.05]}), r"structure\.friction: missing"),
     (dict(structure={"friction": 0.05, "mass": 2.0}), r"structure: unknown key\(s\) \['mass'\]"),

@@ -157,8 +157,8 @@ def test_a_suite_history_names_its_record_and_a_swept_friction_its_key(suite):
     with pytest.raises(StudyError, match=r"histories\[0\]: no record: a suite's history names one of its records "
                                          r"\['RSN11_NORTH', 'RSN12_SOUTH', 'RSN13_EAST'\]"):
         Study.from_config({**CONFIG, "histories": [{"scale": 2.5}]}, suite)
-    with pytest.raises(StudyError, match=r"sweep\.friction\[0\]: 0\.0 is outside"):
-        Study.from_config({**CONFIG, "sweep": {**CONFIG["sweep"], "friction": [0.0, 0.05]}}, suite)
+    with pytest.raises(StudyError, match=r"sweep\.friction\[0\]: -0\.01 is outside"):
+        Study.from_config({**CONFIG, "sweep": {**CONFIG["sweep"], "friction": [-0.01, 0.05]}}, suite)
 
 
 def test_a_suite_of_pairs_is_a_study_and_runs_on_a_structure(suite):

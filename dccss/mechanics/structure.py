@@ -16,6 +16,24 @@ u̇ / |u̇| while the structure slides, and sticking (u̇ = 0) holds while the f
 supply, |-m a_g - W u / L|, is at most μ W; then z is that force over μ W. Dividing by m, W drops
 out: only μ, ζ, L and g = 9.80665 m/s² remain.
 
+**The vertical component.** A vertical ground acceleration a_v (up positive) changes the normal force
+on the device to N = W (1 + a_v / g): the superstructure, rigid and rigidly carried vertically by the
+device, is accelerated upwards with the ground. Both the pendulum's restoring force N u / L and the
+friction μ N scale with N, so
+
+    ü + 2ζω u̇ + (1 + a_v/g) (ω² u + μ g z) = -a_g,
+
+with c = 2ζmω from the nominal period (the damping does not follow N), and sticking holds while
+|-a_g - (1 + a_v/g) ω² u| <= μ g (1 + a_v/g). A constant a_v is the horizontal problem with g replaced
+by g + a_v. Where N <= 0 the superstructure lifts off: the device holds it neither way (no restoring
+force, no friction) and u follows ü = -a_g - 2ζω u̇ until it lands; the intervals are found exactly on
+the straight lines joining the samples (``Ground.uplift``) and what follows them describes no real
+structure (the landing's impact is not modelled). Neglected: the vertical inertia of the pad and of a
+flexible superstructure beyond the rigid-body term (the normal force is W (1 + a_v/g) exactly only for
+a rigid mass on a rigid device), rocking, and the second-order N = W + F u / R of OpenSees'
+``singleFPBearing``. With a vertical, one component is solved by the two-component integrator (below),
+its second component without load.
+
 The ground acceleration is given as ``Ground``: on each interval [t_k, t_k+1] a straight line
 a0_k + a1_k (t - t_k) (one column per component), as a record's samples are joined (and a
 displacement table's piecewise-constant acceleration).
@@ -73,7 +91,8 @@ FRICTION_ON = ("device", "surfaces")
 
 @dataclass(frozen=True)
 class Structure:
-    """A rigid superstructure on the device: the friction coefficient (``friction``, 0 < μ < 1) of the
+    """A rigid superstructure on the device: the friction coefficient (``friction``, 0 <= μ < 1; 0 a
+    frictionless pendulum) of the
     device (``friction_on="device"``: the force at zero stroke is μ W) or of each sliding surface
     (``"surfaces"``, see :meth:`device_friction`), and the viscous damping ratio ζ (``damping``,
     0 <= ζ < 1, of the pendulum's frequency)."""
@@ -84,14 +103,13 @@ class Structure:
 
     def __post_init__(self):
         problems = []
-        for key, value, low_ok in (("friction", self.friction, False), ("damping", self.damping, True)):
+        for key, value in (("friction", self.friction), ("damping", self.damping)):
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
                 problems.append(f"structure.{key}: expected a number, got {type(value).__name__} {value!r}")
                 continue
             value = float(value)
-            inside = (value >= 0.0 if low_ok else value > 0.0) and value < 1.0
-            if not (math.isfinite(value) and inside):
-                allowed = "0 <= ζ < 1" if low_ok else "0 < μ < 1"
+            if not (math.isfinite(value) and 0.0 <= value < 1.0):
+                allowed = "0 <= ζ < 1" if key == "damping" else "0 <= μ < 1"
                 problems.append(f"structure.{key}: {value!r} is outside {allowed}")
             object.__setattr__(self, key, value)
         if self.friction_on not in FRICTION_ON:
@@ -111,7 +129,7 @@ class Structure:
         mu = self.friction * float(geometry.R1 + geometry.R3) / float(geometry.L)
         if not mu < 1.0:
             raise StructureError(f"structure.friction: {self.friction!r} on each surface is a device friction "
-                                 f"{mu:.4g} = μs (R1 + R3) / L, outside 0 < μ < 1")
+                                 f"{mu:.4g} = μs (R1 + R3) / L, outside 0 <= μ < 1")
         return mu
 
     def attrs(self, geometry) -> dict:
@@ -128,18 +146,68 @@ def period(L) -> float:
 
 class Ground(NamedTuple):
     """A piecewise-linear ground acceleration: a0[k] + a1[k] (t - time[k]) on [time[k], time[k+1]]
-    (m/s², m/s³), with a column per component (shape (n, c))."""
+    (m/s², m/s³), with a column per component (shape (n, c)); and the vertical acceleration a_v
+    (up positive) alike, v0[k] + v1[k] (t - time[k]) (shape (n,)), or None where there is none."""
 
     time: np.ndarray  # (n + 1,)
     a0: np.ndarray  # (n, c)
     a1: np.ndarray  # (n, c)
+    v0: np.ndarray | None = None  # (n,)
+    v1: np.ndarray | None = None  # (n,)
 
     @classmethod
-    def from_samples(cls, time, acceleration) -> Ground:
-        """Samples (n + 1,) or (n + 1, c) joined by straight lines."""
+    def from_samples(cls, time, acceleration, vertical=None) -> Ground:
+        """Samples (n + 1,) or (n + 1, c) joined by straight lines; ``vertical`` (n + 1,) a_v, or None."""
         time = np.asarray(time, dtype=float)
         a = np.asarray(acceleration, dtype=float).reshape(time.size, -1)
-        return cls(time, a[:-1], np.diff(a, axis=0) / np.diff(time)[:, None])
+        steps = np.diff(time)
+        if vertical is None:
+            return cls(time, a[:-1], np.diff(a, axis=0) / steps[:, None])
+        v = np.asarray(vertical, dtype=float).reshape(time.size)
+        return cls(time, a[:-1], np.diff(a, axis=0) / steps[:, None], v[:-1], np.diff(v) / steps)
+
+    def scaled(self, factor, vertical=None) -> Ground:
+        """The horizontal acceleration times ``factor`` (a number or one per component), the vertical
+        times ``vertical`` (a number; None: as it is)."""
+        out = self._replace(a0=self.a0 * factor, a1=self.a1 * factor)
+        if vertical is None or self.v0 is None:
+            return out
+        return out._replace(v0=self.v0 * vertical, v1=self.v1 * vertical)
+
+    @property
+    def has_vertical(self) -> bool:
+        """Whether a vertical acceleration other than zero acts (a_v = 0 is the horizontal problem)."""
+        return self.v0 is not None and bool(np.any(self.v0) or np.any(self.v1))
+
+    def normal(self, t=None) -> np.ndarray:
+        """N/W = 1 + a_v/g at the interval ends (or at times ``t``), unclamped (<= 0: uplift)."""
+        if self.v0 is None:
+            return np.ones(self.time.size if t is None else np.size(t))
+        if t is None:
+            end = self.v0[-1] + self.v1[-1] * (self.time[-1] - self.time[-2])
+            return 1.0 + np.append(self.v0, end) / G
+        t = np.asarray(t, dtype=float)
+        k = np.clip(np.searchsorted(self.time, t, side="right") - 1, 0, self.v0.size - 1)
+        return 1.0 + (self.v0[k] + self.v1[k] * (np.clip(t, self.time[0], self.time[-1]) - self.time[k])) / G
+
+    def uplift(self) -> list[tuple[float, float]]:
+        """The intervals (start, end) (s) where N/W = 1 + a_v/g <= 0: the structure lifts off (exact on
+        the straight lines joining the samples); [] without a vertical."""
+        if self.v0 is None:
+            return []
+        ground, _ = self.refined(self.time)
+        middle = 0.5 * (ground.time[:-1] + ground.time[1:])
+        off = ground.normal(middle) <= 0.0
+        out, start = [], None
+        for k, flag in enumerate(off):
+            if flag and start is None:
+                start = float(ground.time[k])
+            if not flag and start is not None:
+                out.append((start, float(ground.time[k])))
+                start = None
+        if start is not None:
+            out.append((start, float(ground.time[-1])))
+        return out
 
     def at(self, t):
         """The acceleration at times t, shape (len(t), c); outside the span the end values hold."""
@@ -149,20 +217,39 @@ class Ground(NamedTuple):
         return self.a0[k] + self.a1[k] * tau[:, None]
 
     def refined(self, times) -> tuple[Ground, np.ndarray]:
-        """The same acceleration with ``times`` added as interval ends, and the index of each of
-        ``times`` among the new ends (times within 1e-9 of an interval of an end count as on it)."""
+        """The same acceleration with ``times`` (and, with a vertical, the times where N/W = 1 + a_v/g
+        crosses 0) added as interval ends, and the index of each of ``times`` among the new ends
+        (times within 1e-9 of an interval of an end count as on it)."""
         times = np.asarray(times, dtype=float)
-        if np.array_equal(times, self.time):  # the samples themselves (a spectrum): nothing to add
+        crossings = _uplift_crossings(self)
+        if not crossings.size and np.array_equal(times, self.time):  # the samples themselves (a spectrum)
             return self, np.arange(times.size)
         near = 1e-9 * float(np.min(np.diff(self.time)))
-        knots = np.union1d(self.time, times)
+        knots = np.union1d(np.union1d(self.time, times), crossings)
         keep = np.concatenate([[True], np.diff(knots) > near])
         knots = knots[keep]
+        ground = self._at_knots(knots, near)
+        index = np.clip(np.searchsorted(knots, times - near, side="left"), 0, knots.size - 1)
+        return ground, index
+
+    def _at_knots(self, knots, near) -> Ground:
+        """The same acceleration on the interval ends ``knots`` (which hold the sample times)."""
         k = np.clip(np.searchsorted(self.time, knots[:-1] + near, side="right") - 1, 0, self.a0.shape[0] - 1)
         tau = knots[:-1] - self.time[k]
         ground = Ground(knots, self.a0[k] + self.a1[k] * tau[:, None], self.a1[k])
-        index = np.clip(np.searchsorted(knots, times - near, side="left"), 0, knots.size - 1)
-        return ground, index
+        if self.v0 is None:
+            return ground
+        return ground._replace(v0=self.v0[k] + self.v1[k] * tau, v1=self.v1[k])
+
+
+def _uplift_crossings(ground: Ground) -> np.ndarray:
+    """The times where a_v crosses -g inside an interval (N/W changes sign there; none without a vertical)."""
+    if ground.v0 is None:
+        return np.zeros(0)
+    h = np.diff(ground.time)
+    start, end = ground.v0 + G, ground.v0 + ground.v1 * h + G  # g + a_v at each interval's ends
+    inside = ((start < 0.0) & (end > 0.0)) | ((start > 0.0) & (end < 0.0))
+    return ground.time[:-1][inside] + start[inside] / (start[inside] - end[inside]) * h[inside]
 
 
 class Response(NamedTuple):
@@ -170,7 +257,9 @@ class Response(NamedTuple):
     friction state z and the force ratio F/W, each (T, c); ``sticking`` (T,) whether u̇ = 0 there;
     ``peaks``: the largest |u| (m) and |F/W| over the record's samples and the requested times, from
     the first of these to the record's end (a coarse step would miss the peaks between its times, and
-    a step that does not divide the record the peaks after its last time)."""
+    a step that does not divide the record the peaks after its last time); ``normal`` (T,) N/W = 1 +
+    a_v/g (ones without a vertical) and ``uplift`` the intervals (start, end) (s) where N/W <= 0, from
+    the first requested time on (None without a vertical)."""
 
     stroke: np.ndarray
     velocity: np.ndarray
@@ -178,6 +267,8 @@ class Response(NamedTuple):
     shear_ratio: np.ndarray
     sticking: np.ndarray
     peaks: tuple = (math.nan, math.nan)
+    normal: np.ndarray | None = None
+    uplift: list | None = None
 
 
 #: a structure's summaries of one history: name -> (units, long_name)
@@ -187,14 +278,24 @@ SUMMARIES = {
     "stroke_end": ("m", "residual stroke u(t_end) (its size |u| for two components)"),
     "shear_ratio_max_abs": ("1", "largest |F/W| of the device"),
 }
+#: the summaries of a structure under a vertical component too
+VERTICAL_SUMMARIES = {
+    "normal_ratio_min": ("1", "smallest N/W = 1 + a_v/g over the whole record"),
+    "uplift_duration": ("s", "how long the superstructure lifts off its device (N/W <= 0) in all"),
+    "uplift_count": ("1", "how many times the superstructure lifts off its device (N/W <= 0)"),
+}
 
 
 def summarize(response: Response) -> dict:
     """The :data:`SUMMARIES` of a response: vector sizes for two components, u(t_end) signed for one; the
-    peaks over the record's samples too (``Response.peaks``)."""
+    peaks over the record's samples too (``Response.peaks``); with a vertical, :data:`VERTICAL_SUMMARIES`."""
     stroke = np.linalg.norm(response.stroke, axis=1)
     end = response.stroke[-1, 0] if response.stroke.shape[1] == 1 else stroke[-1]
-    return {"stroke_max_abs": response.peaks[0], "stroke_end": float(end), "shear_ratio_max_abs": response.peaks[1]}
+    out = {"stroke_max_abs": response.peaks[0], "stroke_end": float(end), "shear_ratio_max_abs": response.peaks[1]}
+    if response.uplift is not None:
+        out.update(normal_ratio_min=response.peaks[2], uplift_duration=float(sum(b - a for a, b in response.uplift)),
+                   uplift_count=len(response.uplift))
+    return out
 
 
 def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
@@ -206,19 +307,32 @@ def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
 
 def solve(ground: Ground, times, L, mu, zeta, compiled=None) -> Response:
     """:func:`respond` for any μ >= 0 (μ = 0: free sliding, the pendulum alone) and 0 <= ζ < 1;
-    ``compiled`` None: the kernels compiled for a long record, interpreted for a short one."""
+    ``compiled`` None: the kernels compiled for a long record, interpreted for a short one.
+
+    With a vertical acceleration a_v (``ground.v0``), the normal force is N = W (1 + a_v/g) and both the
+    restoring force and the friction scale with it (N/W <= 0: the superstructure lifts off, and the
+    device holds it neither way: u follows ü = -a_g - 2ζω u̇ until it lands); solved in one component
+    as in two, by the two-component integrator."""
     refined, index = ground.refined(times)
     omega = math.sqrt(G / L)
     components = refined.a0.shape[1]
-    if components == 1:
+    vertical = refined.has_vertical
+    if components == 1 and not vertical:
         u, v, z, stick = _line(refined.time, refined.a0[:, 0], refined.a1[:, 0], omega, zeta, mu * G, compiled)
         u, v, z = u[:, None], v[:, None], z[:, None]
     else:
         u, v, z, stick = _plane(refined, omega, zeta, mu * G, compiled)
+        u, v, z = u[:, :components], v[:, :components], z[:, :components]
+    normal = refined.normal()
+    force = (u / L + mu * z) * np.maximum(normal, 0.0)[:, None] if vertical else u / L + mu * z
     span = slice(index[0], None)  # to the record's end, past the last requested time
-    peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, u / L + mu * z))
+    peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, force))
+    uplift = None
+    if refined.v0 is not None:
+        peaks += (float(np.min(normal[span])),)
+        uplift = [(max(a, float(times[0])), b) for a, b in refined.uplift() if b > times[0]]
     u, v, z, stick = u[index], v[index], z[index], stick[index]
-    return Response(u, v, z, u / L + mu * z, stick, peaks)
+    return Response(u, v, z, force[index], stick, peaks, None if uplift is None else normal[index], uplift)
 
 
 #: stick/slip phases in one sample interval beyond which the solver gives up (a chatter it cannot resolve)
@@ -420,16 +534,25 @@ def _tableau(compiled):
 
 
 @scalar.jit
+def _normal(t, load):
+    """N/W at t (from the slide's start): n0 + n1 t, 0 where the superstructure lifts off."""
+    return max(load[7] + load[8] * t, 0.0)
+
+
+@scalar.jit
 def _force(t, y, load):
-    """f = -a_g - ω² u at t (from the slide's start) and y, the ground's acceleration from there
-    b0 + b1 t; load = (b0x, b0y, b1x, b1y, ω², 2ζω, μ g)."""
-    return -(load[0] + load[2] * t) - load[4] * y[0], -(load[1] + load[3] * t) - load[4] * y[1]
+    """f = -a_g - ω² (N/W) u at t (from the slide's start) and y, the ground's acceleration from there
+    b0 + b1 t; load = (b0x, b0y, b1x, b1y, ω², 2ζω, μ g, n0, n1), N/W = n0 + n1 t."""
+    n = _normal(t, load)
+    return -(load[0] + load[2] * t) - load[4] * n * y[0], -(load[1] + load[3] * t) - load[4] * n * y[1]
 
 
 @scalar.jit
 def _rhs(t, y, row, K, load, start):
-    """K[row] = dy/dt: u̇ and ü = f - 2ζω u̇ - μ g z, z the direction of u̇ (of f for a ``start`` from rest)."""
+    """K[row] = dy/dt: u̇ and ü = f - 2ζω u̇ - μ g (N/W) z, z the direction of u̇ (of f for a ``start`` from
+    rest)."""
     f0, f1 = _force(t, y, load)
+    friction = load[6] * _normal(t, load)
     d0, d1 = (f0, f1) if start else (y[2], y[3])
     size = math.sqrt(d0 * d0 + d1 * d1)
     if size > 0.0:
@@ -437,8 +560,8 @@ def _rhs(t, y, row, K, load, start):
     at = row * SIZE
     K[at] = y[2]
     K[at + 1] = y[3]
-    K[at + 2] = f0 - load[5] * y[2] - load[6] * d0
-    K[at + 3] = f1 - load[5] * y[3] - load[6] * d1
+    K[at + 2] = f0 - load[5] * y[2] - friction * d0
+    K[at + 3] = f1 - load[5] * y[3] - friction * d1
 
 
 @scalar.jit
@@ -502,10 +625,10 @@ def _first_step(y, end, K, trial, load, start, rtol, atol):
 
 @scalar.jit
 def _g(event, t, y, load):
-    """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g (HELD)."""
+    """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g N/W (HELD)."""
     if event == HELD:
         f0, f1 = _force(t, y, load)
-        return math.sqrt(f0 * f0 + f1 * f1) - load[6]
+        return math.sqrt(f0 * f0 + f1 * f1) - load[6] * _normal(t, load)
     speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
     return speed - (REST_SPEED if event == STOP else START_SPEED)
 
@@ -589,30 +712,43 @@ def _integrate(y, end, h, load, start, stop, rtol, atol, A, B, C, E3, E5, K, out
 
 
 @scalar.jit
-def _breakaway(d0x, d0y, d1x, d1y, friction, end):
-    """The first tau in (0, end) where |d0 + d1 tau| reaches ``friction`` (a quadratic), or -1."""
-    a = d1x * d1x + d1y * d1y
-    b = 2 * (d0x * d1x + d0y * d1y)
-    c = (d0x * d0x + d0y * d0y) - friction * friction
+def _breakaway(d0x, d0y, d1x, d1y, friction, m0, m1, end):
+    """The first tau in (0, end) where |d0 + d1 tau| reaches ``friction`` (m0 + m1 tau) (a quadratic;
+    m0 + m1 tau = N/W >= 0 on the interval), or -1."""
+    f0, f1 = friction * m0, friction * m1
+    a = d1x * d1x + d1y * d1y - f1 * f1
+    b = 2 * (d0x * d1x + d0y * d1y - f0 * f1)
+    c = (d0x * d0x + d0y * d0y) - f0 * f0
     if c > 0.0:
         return 0.0
     if a == 0.0:
+        if b > 0.0:  # a straight line from c <= 0
+            root = -c / b
+            return root if 0.0 < root < end else -1.0
         return -1.0
     disc = b * b - 4 * a * c
     if disc < 0.0:
         return -1.0
-    root = (-b + math.sqrt(disc)) / (2 * a)  # c <= 0: the larger root is the exit
+    if a > 0.0:
+        root = (-b + math.sqrt(disc)) / (2 * a)  # c <= 0: the larger root is the exit
+    else:  # opening downwards from c <= 0: the first root where it rises through 0, if it does
+        if b <= 0.0:
+            return -1.0
+        root = (-b + math.sqrt(disc)) / (2 * a)
     return root if 0.0 < root < end else -1.0
 
 
 @scalar.jit
 def _state(k, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick):
-    """Row k of the history: u, u̇, and z (f / μ g sticking; sliding, the direction of u̇, or at rest
-    that of the force)."""
+    """Row k of the history: u, u̇, and z (f / μ g (N/W) sticking, ``friction`` being μ g (N/W) there;
+    sliding, the direction of u̇, or at rest that of the force)."""
     u[k, 0], u[k, 1], v[k, 0], v[k, 1] = x0, x1, w0, w1
     stick[k] = not sliding
     if not sliding:
-        z[k, 0], z[k, 1] = f0 / friction, f1 / friction
+        if friction > 0.0:
+            z[k, 0], z[k, 1] = f0 / friction, f1 / friction
+        else:
+            z[k, 0], z[k, 1] = 0.0, 0.0
         return
     z[k, 0], z[k, 1] = 0.0, 0.0
     if friction == 0.0:
@@ -623,20 +759,23 @@ def _state(k, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick):
         z[k, 0], z[k, 1] = d0 / size, d1 / size
 
 
-def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z, stick):
+def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z,
+          stick):
     """The two-component history at the interval ends (the module docstring) into u, u̇, z (n, 2) and
-    sticking (n,): (DONE, 0), or (CHATTER or FAILED, the interval where the run stopped)."""
+    sticking (n,), N/W on interval k being n0[k] + n1[k] (t - t_k) (0 where that is negative): (DONE, 0),
+    or (CHATTER or FAILED, the interval where the run stopped)."""
     n = time.size
     w2, damp = omega * omega, 2 * zeta * omega
     x0, x1, w0, w1 = 0.0, 0.0, 0.0, 0.0
-    # sticking holds while |f| <= μ g (1 + rtol): a stop where the force equals the friction to within
-    # the integration's own accuracy (as a Coulomb oscillator's last stop under a constant load) is
-    # not left to the rounding of the state there
+    # sticking holds while |f| <= μ g (N/W) (1 + rtol): a stop where the force equals the friction to
+    # within the integration's own accuracy (as a Coulomb oscillator's last stop under a constant load)
+    # is not left to the rounding of the state there
     hold = friction * (1.0 + rtol)
+    m = max(n0[0], 0.0)
     f0, f1 = -a0[0, 0], -a0[0, 1]
-    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold
+    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold * m
     starting = sliding and friction > 0.0  # a start from rest, until |u̇| reaches START_SPEED
-    _state(0, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick)
+    _state(0, x0, x1, w0, w1, f0, f1, sliding, friction * m, u, v, z, stick)
     h_next = 0.0  # the integrator's step, carried while the structure slides on
     for k in range(n - 1):
         h = time[k + 1] - time[k]
@@ -647,9 +786,11 @@ def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y
                 return CHATTER, k
             b00, b01 = a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau
             b10, b11 = a1[k, 0], a1[k, 1]
+            m0, m1 = n0[k] + n1[k] * tau, n1[k]
             end = h - tau
             if not sliding:
-                when = _breakaway(-b00 - w2 * x0, -b01 - w2 * x1, -b10, -b11, hold, end)
+                when = _breakaway(-b00 - w2 * m0 * x0, -b01 - w2 * m0 * x1, -b10 - w2 * m1 * x0, -b11 - w2 * m1 * x1,
+                                  hold, m0, m1, end)
                 tau += when if when >= 0.0 else end
                 sliding = starting = when >= 0.0
                 h_next = 0.0
@@ -660,7 +801,7 @@ def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y
                 # vanishing time; until |u̇| reaches START_SPEED (in this interval or a later one) the
                 # friction is taken along the force (exact along a line), which spares the integrator
                 # the direction of a velocity that is only rounding
-                load = (b00, b01, b10, b11, w2, damp, friction)
+                load = (b00, b01, b10, b11, w2, damp, friction, m0, m1)
                 ended, when, h_next = _integrate(y, end, 0.0, load, True, False, rtol, atol, A, B, C, E3, E5, K,
                                                  out, trial)
                 if ended == TOO_SHORT:
@@ -674,7 +815,8 @@ def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y
                     continue
                 tau, end, h_next, starting = tau + when, end - when, 0.0, False  # moving
                 b00, b01 = b00 + b10 * when, b01 + b11 * when
-            load = (b00, b01, b10, b11, w2, damp, friction)
+                m0 = m0 + m1 * when
+            load = (b00, b01, b10, b11, w2, damp, friction, m0, m1)
             ended, when, h_next = _integrate(y, end, h_next, load, False, friction > 0.0, rtol, atol, A, B, C, E3,
                                              E5, K, out, trial)
             if ended == TOO_SHORT:
@@ -682,29 +824,38 @@ def plane(time, a0, a1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y
             if ended == STOP:  # at rest: the last REST_SPEED at the deceleration there, to first order
                 speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
                 g0, g1 = _force(when, y, load)
-                slowing = friction + damp * speed - (g0 * y[2] + g1 * y[3]) / speed
+                slowing = friction * _normal(when, load) + damp * speed - (g0 * y[2] + g1 * y[3]) / speed
                 last = min(speed / slowing, end - when) if slowing > 0.0 else 0.0
                 x0, x1, w0, w1 = y[0] + 0.5 * last * y[2], y[1] + 0.5 * last * y[3], 0.0, 0.0
                 when += last
                 tau += when
-                g0 = -(b00 + b10 * when) - w2 * x0
-                g1 = -(b01 + b11 * when) - w2 * x1
-                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold
+                m = _normal(when, load)
+                g0 = -(b00 + b10 * when) - w2 * m * x0
+                g1 = -(b01 + b11 * when) - w2 * m * x1
+                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold * m
                 h_next = 0.0
                 continue
             x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
-        f0 = -(a0[k, 0] + a1[k, 0] * h) - w2 * x0
-        f1 = -(a0[k, 1] + a1[k, 1] * h) - w2 * x1
-        _state(k + 1, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick)
+        m = max(n0[k] + n1[k] * h, 0.0)
+        f0 = -(a0[k, 0] + a1[k, 0] * h) - w2 * m * x0
+        f1 = -(a0[k, 1] + a1[k, 1] * h) - w2 * m * x1
+        _state(k + 1, x0, x1, w0, w1, f0, f1, sliding, friction * m, u, v, z, stick)
     return DONE, 0
 
 
 def _plane(ground: Ground, omega, zeta, friction, compiled=None):
     """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2) and
-    sticking; ``compiled`` None: compiled for a long record (``backend``), interpreted for a short one."""
+    sticking; one component runs as the first of two, the second without load; ``compiled`` None:
+    compiled for a long record (``backend``), interpreted for a short one."""
     from . import backend
 
-    time, a0, a1 = ground
+    time, a0, a1 = ground.time, ground.a0, ground.a1
+    if a0.shape[1] == 1:
+        a0, a1 = np.column_stack([a0, np.zeros_like(a0)]), np.column_stack([a1, np.zeros_like(a1)])
+    if ground.v0 is None:
+        n0, n1 = np.ones(time.size - 1), np.zeros(time.size - 1)
+    else:
+        n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
     n = time.size
     if compiled is None:
         compiled = backend.choose(n - 1, INTERVAL_WORK) == "numba"
@@ -715,7 +866,8 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None):
     u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     stick = np.zeros(n, dtype=bool)
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
-                    np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), float(RTOL),
+                    np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
+                    np.ascontiguousarray(n1, dtype=float), float(omega), float(zeta), float(friction), float(RTOL),
                     float(ATOL), *_tableau(compiled), *work, u, v, z, stick)
     if status == CHATTER:
         raise _chatter(time[k])
