@@ -62,7 +62,17 @@ import numpy as np
 import yaml
 
 from .checks import CaseError, Problems, check_keys, choice, number
-from .excitation import COMPONENTS, Component, Oriented, Scaled, Sine, check_step, read_table
+from .excitation import (
+    COMPONENTS,
+    Component,
+    Oriented,
+    Scaled,
+    Sine,
+    Vertical,
+    VerticalSine,
+    check_step,
+    read_table,
+)
 from .mechanics import registry
 from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import ANGLES, LENGTHS, PARAMETERS, Geometry
@@ -149,6 +159,9 @@ def _excitation(value, kind, base, geometry, key):
             raise CaseError(f"{key}.azimuth: a record pair (file: [x, y]) has two components already; azimuth "
                             f"orients a one-component excitation: remove it, or give one file")
         return _oriented(record_from(value, base, key), azimuth, key)
+    if "vertical" in value and not isinstance(value["vertical"], dict):
+        raise CaseError(f"{key}.vertical: a vertical file is a record's component (kind: record); a {kind} takes a "
+                        f"vertical sine {{kind: sine, amplitude, omega}}, got {value['vertical']!r}")
     if kind == "sine":
         problems = Problems(value)
         amplitude = geometry.capacity1 if value["amplitude"] == "capacity" else \
@@ -169,7 +182,22 @@ def _excitation(value, kind, base, geometry, key):
             raise CaseError(f"{key}.azimuth: the table {value['file']!r} has two components (columns time, x, y) "
                             f"already; azimuth orients a one-component table (time, displacement): remove it")
         scale = number(value["scale"], f"{key}.scale") if "scale" in value else None
-    return _oriented(excitation if scale is None else Scaled(excitation, scale), azimuth, key)
+    excitation = excitation if scale is None else Scaled(excitation, scale)
+    if "vertical" in value:
+        excitation = Vertical(excitation, _vertical_sine(value["vertical"], excitation.t_start, f"{key}.vertical"))
+    return _oriented(excitation, azimuth, key)
+
+
+def _vertical_sine(value, t_start, key) -> VerticalSine:
+    """A vertical sine {kind: sine, amplitude (m/s²), omega (rad/s)} starting at t_start; errors name ``key``."""
+    if not isinstance(value, dict):
+        raise CaseError(f"{key}: expected a file or a sine {{kind: sine, amplitude, omega}}, got {value!r}")
+    check_keys(value, key, ("kind", "amplitude", "omega"), ())
+    choice(value["kind"], f"{key}.kind", ("sine",))
+    try:
+        return VerticalSine(value["amplitude"], value["omega"], t_start)
+    except CaseError as err:
+        raise CaseError(str(err).replace("excitation.vertical", key)) from None
 
 
 def _amplitude(value, key):
@@ -194,7 +222,7 @@ def record_from(value, base: Path, key="excitation"):
     """A Record (a ground-motion file processed to displacement), or a RecordPair when ``file`` is
     a list of two files [x, y], from its mapping; ``units`` states the units of the files' motion
     when a file does not."""
-    from .records import BASELINES, Record, RecordPair, WindowError, units_from
+    from .records import BASELINES, PAIR_SPANS, RecordPair, WindowError, read_components, units_from
 
     file = value["file"]
     if isinstance(file, list):
@@ -232,36 +260,40 @@ def record_from(value, base: Path, key="excitation"):
             units_from(units)
         except ValueError as err:
             raise CaseError(f"{key}.units: {err}") from None
+    pair_span = choice(value.get("pair_span", "common"), f"{key}.pair_span", PAIR_SPANS)
+    vertical = value.get("vertical")
+    if vertical is not None and not isinstance(vertical, (str, dict)):
+        raise CaseError(f"{key}.vertical: expected the vertical component's file or a sine {{kind: sine, amplitude, "
+                        f"omega}}, got {type(vertical).__name__} {vertical!r}")
+    files = [base / f for f in (file if isinstance(file, list) else [file])]
+    up_file = base / vertical if isinstance(vertical, str) else None
+
     def read(factor, cut=window):
+        """The horizontal motion (its vertical component kept as ``vertical``, None without one)."""
         try:
-            if isinstance(file, list):
-                return RecordPair.from_files([base / f for f in file], scale=factor, window=cut,
-                                             baseline=baseline, units=units, rotation=rotation)
-            return Record.from_file(base / file, scale=factor, window=cut, baseline=baseline, units=units)
+            horizontals, up = read_components(files, up_file, scale=factor, window=cut, baseline=baseline,
+                                              units=units, pair_span=pair_span)
+            motion = RecordPair.of(*horizontals, files, rotation) if isinstance(file, list) else horizontals[0]
         except ValueError as err:
             raise CaseError(f"{key}.{'window' if isinstance(err, WindowError) else 'file'}: {err}") from None
+        motion.vertical = up
+        return motion
 
     def whole(factor):
-        """The record before its window (for its spectrum): a pair's components where both have samples."""
-        try:
-            return read(factor, None)
-        except CaseError as err:
-            if not isinstance(file, list) or window is None:
-                raise
-            try:  # components of different lengths, which the window cuts to the same times
-                x, y = (Record.from_file(base / f, baseline=baseline, units=units) for f in file)
-            except ValueError:
-                raise err from None  # not a matter of lengths: the pair's own error
-            return read(factor, (max(x.t_start, y.t_start), min(x.t_end, y.t_end)))
+        """The record before its window (for its spectrum)."""
+        return read(factor, None)
 
     if spectral is None:
-        return read(scale)
+        motion = read(scale)
     # the spectrum is the whole record's (as its processing), the scaled record then windowed
-    if spectral.get("to") == "spectrum":
-        identity = (tuple(str(base / f) for f in (file if isinstance(file, list) else [file])), baseline, units,
-                    rotation, window)
-        return _scaled_over_range(identity, read, whole, spectral, isinstance(file, list), f"{key}.scale", base)
-    return _scaled_to_spectrum(whole(scale), read, spectral, isinstance(file, list), f"{key}.scale")
+    elif spectral.get("to") == "spectrum":
+        identity = (tuple(str(f) for f in files), baseline, units, rotation, window, pair_span)
+        motion = _scaled_over_range(identity, read, whole, spectral, isinstance(file, list), f"{key}.scale", base)
+    else:
+        motion = _scaled_to_spectrum(whole(scale), read, spectral, isinstance(file, list), f"{key}.scale")
+    if isinstance(vertical, dict):
+        return Vertical(motion, _vertical_sine(vertical, motion.t_start, f"{key}.vertical"))
+    return motion if motion.vertical is None else Vertical(motion, motion.vertical)
 
 
 def _scaled_to_spectrum(record, read, spec, pair, key):

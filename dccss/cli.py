@@ -45,7 +45,8 @@ EXIT_CODES = {0: "written (also a history marked failed with on_failure: mark)",
               2: "bad input: the case file, the output path or DCCSS_BACKEND; nothing is run or written (or the output "
                  "could not be written)",
               3: "solver failure (on_failure: error); nothing is written",
-              4: "the pad reached a retaining ring (capacity: error); nothing is written"}
+              4: "the pad reached a retaining ring, or the structure lifted off its device (capacity: error); "
+                 "nothing is written"}
 #: what each value of DCCSS_BACKEND runs (``dccss.mechanics.backend``)
 BACKEND_CHOICES = {"auto": "the kernels, compiled where the run is large enough for them to pay, interpreted "
                            "otherwise (the default; the same results to the last bit)",
@@ -87,7 +88,17 @@ def _structure(ds) -> str:
     a = ds.attrs  # the peaks over the record's samples too (not only the steps), over the whole record
     return (f"; structure (mu = {a['structure_friction']:g}, zeta = {a['structure_damping']:g}, "
             f"T = {a['structure_period_s']:.3g} s): peak |u| = {100 * a['structure_stroke_max_abs_m']:.3f} cm, "
-            f"{end} = {residual}, peak |F/W| = {a['structure_shear_ratio_max_abs']:.4f}")
+            f"{end} = {residual}, peak |F/W| = {a['structure_shear_ratio_max_abs']:.4f}{_vertical(a)}")
+
+
+def _vertical(a) -> str:
+    """The vertical component's peak and the smallest N/W (and the uplift, if any) of a structure's history."""
+    if "vertical_pga_m_per_s2" not in a:
+        return ""
+    lifted = (f"; lifts off at t = {a['uplift_at_s']:.6g} s, {a['uplift_count']} time(s), "
+              f"{a['uplift_duration_s']:.3g} s in all" if "uplift_at_s" in a else "")
+    return (f"; vertical PGA = {a['vertical_pga_m_per_s2'] / G:.3g} g, smallest N/W = "
+            f"{a['structure_normal_ratio_min']:.3g}{lifted}")
 
 
 def _kinematics(ds) -> str:

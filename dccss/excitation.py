@@ -25,7 +25,9 @@ given in degrees (case files, sweeps, ``Oriented``).
 * :class:`PlaneTable` (CSV ``time, x, y``): two sampled components; :func:`read_table` reads
   either CSV by its header;
 * ``dccss.records.Record`` (one component) and ``dccss.records.RecordPair`` (two);
-* :class:`Scaled`: any of them times a constant factor.
+* :class:`Scaled`: any of them times a constant factor;
+* :class:`Vertical`: any of them with a vertical ground acceleration (a record's vertical component or
+  a :class:`VerticalSine`), which acts on an isolated structure's normal force only.
 """
 
 from __future__ import annotations
@@ -296,8 +298,9 @@ def read_table(path):
 
 
 def _times(ground: Ground, factor) -> Ground:
-    """``ground`` with its acceleration multiplied by ``factor`` (a number, or a row per component)."""
-    return Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
+    """``ground`` with its horizontal acceleration multiplied by ``factor`` (a number, or a row per
+    component); its vertical as it is."""
+    return ground.scaled(factor)
 
 
 def underlying(excitation):
@@ -456,10 +459,86 @@ class Scaled(_Wrapper):
         return self.factor * self.excitation.velocity(t)
 
     def ground_acceleration(self) -> Ground:
-        return _times(self.excitation.ground_acceleration(), self.factor)
+        """The inner excitation's times the factor, its vertical too (a record's scale is its vertical's)."""
+        return self.excitation.ground_acceleration().scaled(self.factor, vertical=self.factor)
 
     def attrs(self):
         return {**self.excitation.attrs(), "excitation_scale": self.factor}
+
+
+@dataclass(frozen=True)
+class VerticalSine:
+    """A vertical ground acceleration a_v(t) = amplitude sin(omega (t - t_start)) (m/s², up positive; rad/s)."""
+
+    amplitude: float
+    omega: float
+    t_start: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", number(self.amplitude, "excitation.vertical.amplitude"))
+        object.__setattr__(self, "omega", number(self.omega, "excitation.vertical.omega"))
+
+    def at(self, t):
+        return self.amplitude * np.sin(self.omega * (np.asarray(t, dtype=float) - self.t_start))
+
+    def attrs(self) -> dict:
+        return {"vertical_form": "sine", "vertical_amplitude_m_per_s2": self.amplitude,
+                "vertical_omega_rad_per_s": self.omega}
+
+
+@dataclass(frozen=True)
+class Vertical(_Wrapper):
+    """An excitation with a vertical ground acceleration a_v(t) (m/s², up positive): ``vertical`` a
+    processed ``dccss.records.Record`` on the excitation's samples (a record's vertical component) or a
+    :class:`VerticalSine`. It changes nothing of the horizontal motion; it acts on an isolated
+    structure's normal force N = W (1 + a_v/g) (``ground_acceleration`` carries it, sampled at the
+    horizontal's interval ends)."""
+
+    excitation: object
+    vertical: object
+
+    @property
+    def components(self):
+        return self.excitation.components
+
+    @property
+    def parameters(self):
+        return self.excitation.parameters
+
+    @property
+    def azimuth(self):
+        return self.excitation.azimuth
+
+    def displacement(self, t, **parameters):
+        return self.excitation.displacement(t, **parameters)
+
+    def velocity(self, t, **parameters):
+        return self.excitation.velocity(t, **parameters)
+
+    def vertical_acceleration(self, t):
+        """a_v (m/s², up positive) at times t (s): a record's samples joined by straight lines."""
+        if isinstance(self.vertical, VerticalSine):
+            return self.vertical.at(t)
+        return np.interp(t, self.vertical.time, self.vertical.acceleration)
+
+    @property
+    def vertical_pga(self) -> float:
+        """The largest |a_v| (m/s²) over the excitation's span."""
+        if isinstance(self.vertical, VerticalSine):
+            return abs(self.vertical.amplitude)
+        return float(np.max(np.abs(self.vertical.acceleration)))
+
+    def ground_acceleration(self, **parameters) -> Ground:
+        ground = self.excitation.ground_acceleration(**parameters)
+        a_v = self.vertical_acceleration(ground.time)
+        return ground._replace(v0=a_v[:-1], v1=np.diff(a_v) / np.diff(ground.time))
+
+    def attrs(self) -> dict:
+        own = self.vertical.attrs()
+        if not isinstance(self.vertical, VerticalSine):
+            own = {"vertical_form": "record", **{f"record_vertical_{k.removeprefix('record_')}": v
+                                                 for k, v in own.items() if k != "excitation"}}
+        return {**self.excitation.attrs(), **own, "vertical_pga_m_per_s2": self.vertical_pga}
 
 
 def check_step(dt, excitation, key="dt") -> float:

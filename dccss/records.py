@@ -347,15 +347,20 @@ def read_peer(path, units=None, quantity=None) -> tuple[float, np.ndarray, Units
 
 
 _AZIMUTH_WORDS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0}
-_VERTICAL = re.compile(r"^(UP|UD|DWN|DOWN|V|Z|VER|VERT|[A-Z]{2}Z)\b", re.IGNORECASE)
+_VERTICAL = re.compile(r"^(UP|UD|DWN|DOWN|V\d?|Z|VER|VERT|[A-Z]{2}Z)\b", re.IGNORECASE)
+# a quadrant bearing: N76W is 76 degrees west of north (284), S14W 14 west of south (194)
+_BEARING = re.compile(r"^([NS])\s*(\d{1,2}(?:\.\d+)?)\s*([EW])\b", re.IGNORECASE)
 
 
 def peer_azimuth(path):
     """A PEER file's component direction from its line 2 (event, station, component), whose last
     comma-separated field names it: the azimuth in degrees clockwise from north ('180', '270',
-    '000', also 'N', 'E', 'S', 'W', channel codes ending in them, 'HNE', and the K-NET/KiK-net 'NS'
-    (north) and 'EW' (east)); "vertical" for a vertical component ('UP', 'UD', 'DWN', 'V', 'Z', 'HNZ');
-    None where it says neither (a file of another kind)."""
+    '000', '52', also 'N', 'E', 'S', 'W', channel codes ending in them, 'HNE', the K-NET/KiK-net 'NS'
+    (north) and 'EW' (east), and quadrant bearings: 'N76W' is 284, 'S14W' 194, 'S64E' 116);
+    "vertical" for a vertical component ('UP', 'UD', 'DWN', 'V', 'V1', 'VER', 'Z', 'HNZ'; it does not
+    say which way the component's positive is: 'UP' and 'DWN' alike give "vertical"); None where it
+    says neither ('L'/'T', longitudinal and transverse, and 'NA' name no direction; a file of
+    another kind)."""
     path = Path(path)
     if path.suffix.lower() not in PEER_QUANTITY:
         return None
@@ -366,6 +371,11 @@ def peer_azimuth(path):
     number = re.match(r"^(\d{1,3}(?:\.\d+)?)(?:\s|$|\()", field)
     if number and 0.0 <= float(number.group(1)) <= 360.0:
         return float(number.group(1)) % 360.0
+    bearing = _BEARING.match(field)
+    if bearing and float(bearing.group(2)) <= 90.0:
+        ref, angle, side = bearing.group(1).upper(), float(bearing.group(2)), bearing.group(3).upper()
+        turn = angle if side == "E" else -angle  # clockwise from north (N) or anticlockwise from south (S)
+        return (turn if ref == "N" else 180.0 - turn) % 360.0
     if _VERTICAL.match(field):
         return "vertical"
     word = re.match(r"^(NS|EW)\b", field, re.IGNORECASE) or re.match(r"^(?:[A-Z]{2})?([NESW])\b", field,
@@ -567,6 +577,41 @@ def read_acceleration_csv(path, units=None) -> tuple[np.ndarray, np.ndarray]:
     return time, values * stated.to_si
 
 
+class Raw(NamedTuple):
+    """A record file's samples as read, before any processing."""
+
+    path: Path
+    time: np.ndarray  # (s)
+    values: np.ndarray  # in ``units``
+    units: Units
+    sha256: str
+    span: dict | None = None  # how it was joined to other components (``read_components``)
+
+    def record(self, **processing) -> Record:
+        """The :class:`Record` of these samples (``processing``: scale, window, baseline)."""
+        record = Record(self.time, **{self.units.quantity: self.values}, units=self.units.text,
+                        source=str(self.path), sha256=self.sha256, **processing)
+        if self.span:
+            record.span = self.span
+        return record
+
+
+def read_raw(path, units=None) -> Raw:
+    """Read a record file (``.AT2``/``.VT2``/``.DT2``: :func:`read_peer`; ``.csv``/``.txt``/``.dat``:
+    :func:`read_text`) without processing it; errors name the file."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix in PEER_QUANTITY:
+        dt, values, stated = read_peer(path, units)
+        time = dt * np.arange(values.size)
+    elif suffix in TEXT_SUFFIXES:
+        time, values, stated = read_text(path, units)
+    else:
+        raise _fail(path, f"unknown record format {path.suffix!r}; expected .AT2, .VT2, .DT2 (PEER NGA) or "
+                          f".csv, .txt, .dat (time and motion columns)")
+    return Raw(path, time, values, stated, hashlib.sha256(path.read_bytes()).hexdigest())
+
+
 # --- processing --------------------------------------------------------------------------------------
 def _trapezoid_weights(t):
     w = np.zeros_like(t)
@@ -756,18 +801,7 @@ class Record:
         ``.csv``/``.txt``/``.dat``: two columns, time and motion (:func:`read_text`). ``units``
         states the units of the motion when the file does not (and must agree when it does).
         """
-        path = Path(path)
-        suffix = path.suffix.lower()
-        if suffix in PEER_QUANTITY:
-            dt, values, stated = read_peer(path, units)
-            time = dt * np.arange(values.size)
-        elif suffix in TEXT_SUFFIXES:
-            time, values, stated = read_text(path, units)
-        else:
-            raise _fail(path, f"unknown record format {path.suffix!r}; expected .AT2, .VT2, .DT2 (PEER NGA) or "
-                              f".csv, .txt, .dat (time and motion columns)")
-        return cls(time, **{stated.quantity: values}, units=stated.text, source=str(path), scale=scale,
-                   window=window, baseline=baseline, sha256=hashlib.sha256(path.read_bytes()).hexdigest())
+        return read_raw(path, units).record(scale=scale, window=window, baseline=baseline)
 
     def _plausibility(self) -> str:
         low, high = PGA_PLAUSIBLE_G
@@ -839,12 +873,174 @@ class Record:
                  "record_pga_m_per_s2": self.pga, "record_pgv_m_per_s": self.pgv, "record_pgd_m": self.pgd}
         if self.warning:
             attrs["record_warning"] = self.warning
-        return {**attrs, **getattr(self, "scaling", {})}
+        return {**attrs, **getattr(self, "span", {}), **getattr(self, "scaling", {})}
 
     def __repr__(self):
         return (f"Record({Path(self.source).name!r}, {self.quantity} in {self.units}, {self.npts} samples, "
                 f"t = {self.t_start:g}..{self.t_end:g} s, scale={self.scale:g}, baseline={self.baseline!r}, "
                 f"PGA={self.pga / G:.3f} g, PGD={self.pgd:.3f} m)")
+
+
+#: the least angle (degrees) between two components' axes that are resolved onto east and north: at
+#: 30 degrees an error e in each sensor's reading becomes at most e / sqrt(1 - cos 30°) = 2.7 e in the
+#: resolved motion (the inverse of the smallest singular value of the sensors' directions); closer to
+#: parallel the two readings barely tell the directions apart, and their noise swamps the motion
+MIN_AXES_ANGLE = 30.0
+#: how two components of different lengths (the same step) are joined: over the time both cover, or
+#: the shorter padded with zero acceleration to the longer
+PAIR_SPANS = ("common", "longest")
+
+
+class PairWarning(RecordWarning):
+    """Components that a pair joins by a rule: different lengths, or axes not at right angles."""
+
+
+def _frame(az1, az2) -> tuple[np.ndarray, float]:
+    """The matrix that turns the two sensors' readings into (east, north), and how far (degrees) their
+    axes are from right angles (0: orthogonal). Sensor i reads the projection of the ground's motion on
+    its axis e_i = (sin az_i, cos az_i): the readings are E^T m, so m = (E^T)^-1 readings (for axes at
+    right angles, E itself)."""
+    a = np.radians([az1, az2])
+    E = np.array([[np.sin(a[0]), np.sin(a[1])], [np.cos(a[0]), np.cos(a[1])]])  # columns: the axes (east, north)
+    gap = (az2 - az1) % 180.0
+    angle = min(gap, 180.0 - gap)  # between the axes as lines
+    if abs(gap - 90.0) <= 1e-6:
+        return E, 0.0
+    if angle < MIN_AXES_ANGLE:
+        raise ValueError(f"record pair: the components' azimuths {az1:g} and {az2:g} degrees put their axes "
+                         f"{angle:g} degrees apart, closer to parallel than {MIN_AXES_ANGLE:g} degrees: two such "
+                         f"readings cannot be resolved onto east and north (an error in either would grow more "
+                         f"than {1 / np.sqrt(1 - np.cos(np.radians(MIN_AXES_ANGLE))):.1f} times); a pair is two "
+                         f"horizontal components at (or near) right angles")
+    warnings.warn(f"record pair: the components' azimuths {az1:g} and {az2:g} degrees are {angle:g} degrees apart, "
+                  f"not at right angles: the motion is resolved exactly onto east and north from both readings",
+                  PairWarning, stacklevel=3)
+    return np.linalg.inv(E.T), float(90.0 - angle)
+
+
+def _uniform_step(raw) -> float | None:
+    """The step of ``raw``'s sample times if they are uniform (to 1e-9 of it), else None."""
+    steps = np.diff(raw.time)
+    mean = float(raw.time[-1] - raw.time[0]) / steps.size
+    return mean if np.ptp(steps) <= 1e-9 * mean else None
+
+
+def _describe(raw) -> str:
+    return (f"{raw.path.name!r}: {raw.time.size} samples, t = {float(raw.time[0]):.6g} to {float(raw.time[-1]):.6g} s, "
+            f"dt = {float(np.max(np.diff(raw.time))):.12g} s")
+
+
+def read_components(paths, vertical=None, *, scale=1.0, window=None, baseline=None, units=None,
+                    pair_span="common") -> tuple[list[Record], Record | None]:
+    """Read the horizontal component(s) ``paths`` (one or two files) and an optional ``vertical`` file
+    of one recording, each processed as :meth:`Record.from_file` does with the same ``scale``,
+    ``window``, ``baseline`` and ``units``, on the same sample times.
+
+    Files of the same step but different lengths (PEER distributes such pairs) are joined by
+    ``pair_span``: ``"common"`` (default) runs over the time all of them cover (each file processed
+    whole, then cut there: the same as a ``window`` over that time); ``"longest"`` pads the shorter
+    files with zero acceleration samples up to the longest (then processed with the record, as if the
+    file held them). Both say so: a :class:`PairWarning`, and each record's ``span`` (its attributes)
+    says what was dropped or padded, in s, and the largest |a| dropped. Different steps are refused:
+    nothing is resampled.
+
+    Returns
+    -------
+    horizontals : list of Record
+        One per file of ``paths``.
+    vertical : Record or None
+        The vertical component, up positive (a file labelled ``DWN`` or ``DOWN`` on its line 2 is
+        negated: PEER's down-positive channel).
+    """
+    if pair_span not in PAIR_SPANS:
+        raise ValueError(f"pair_span must be one of {list(PAIR_SPANS)}, got {pair_span!r}")
+    raws = [read_raw(p, units) for p in paths] + ([read_raw(vertical, units)] if vertical is not None else [])
+    if vertical is not None and peer_azimuth(vertical) != "vertical" and peer_azimuth(vertical) is not None:
+        raise ValueError(f"record {str(vertical)!r}: line 2 names a horizontal direction "
+                         f"({peer_azimuth(vertical):g} degrees); the vertical component is the file labelled UP, "
+                         f"DWN, V, UD or Z")
+    windows = [window] * len(raws)
+    if len(raws) > 1 and not all(np.array_equal(r.time, raws[0].time) for r in raws):
+        raws, windows = _joined(raws, window, pair_span, scale)
+    if vertical is not None and _down_positive(vertical):
+        raws[-1] = raws[-1]._replace(values=-raws[-1].values,
+                                     span={**(raws[-1].span or {}), "record_sign": "negated: the file's channel "
+                                                                                   "is down-positive (DWN)"})
+    records = [r.record(scale=scale, window=w, baseline=baseline) for r, w in zip(raws, windows)]
+    return (records, None) if vertical is None else (records[:-1], records[-1])
+
+
+def _down_positive(path) -> bool:
+    """Whether a PEER file's line 2 labels its channel down-positive (``DWN``, ``DOWN``)."""
+    if Path(path).suffix.lower() not in PEER_QUANTITY:
+        return False
+    lines = _read_lines(path)
+    return len(lines) > 1 and re.match(r"^(DWN|DOWN)\b", lines[1].rsplit(",", 1)[-1].strip(), re.IGNORECASE) is not None
+
+
+def _what(raws) -> str:
+    """'record pair' or 'record' (one horizontal and its vertical), for messages."""
+    return "record pair" if sum(peer_azimuth(r.path) != "vertical" for r in raws) == 2 else "record"
+
+
+def _joined(raws, window, pair_span, scale):
+    """The raws (padded, for "longest") and the window of each that put them on the same sample times."""
+    steps = [_uniform_step(r) for r in raws]
+    if None in steps or max(steps) - min(steps) > 1e-9 * min(steps):
+        raise ValueError(f"{_what(raws)}: the components must share their step to be joined, but "
+                         + " and ".join(_describe(r) for r in raws)
+                         + "; dccss does not resample: give components recorded together (the same dt)")
+    dt = steps[0]
+    starts = np.array([float(r.time[0]) for r in raws])
+    ends = np.array([float(r.time[-1]) for r in raws])
+    offsets = (starts - starts.min()) / dt
+    if np.max(np.abs(offsets - np.round(offsets))) > 1e-9:
+        raise ValueError(f"{_what(raws)}: the components' samples are not at the same times (their starts are not a "
+                         f"whole number of steps apart): " + " and ".join(_describe(r) for r in raws))
+    names = ", ".join(_describe(r) for r in raws)
+    if pair_span == "common":
+        low, high = float(starts.max()), float(ends.min())
+        if high - low < 2 * dt:
+            raise ValueError(f"{_what(raws)}: the components share no time ({names}): nothing to run")
+        if window is not None and (window[0] < low - _SNAP * dt or window[1] > high + _SNAP * dt):
+            raise WindowError(f"{_what(raws)}: the window ({window[0]!r}, {window[1]!r}) s lies outside the time "
+                              f"all components cover, {low!r} to {high!r} s ({names}); pair_span: longest pads the "
+                              f"shorter ones instead")
+        told, joined = [], []
+        for r in raws:
+            out = (r.time < low - _SNAP * dt) | (r.time > high + _SNAP * dt)
+            peak = float(np.max(np.abs(r.values[out]))) * r.units.to_si * abs(scale) if out.any() else 0.0
+            span = {"record_pair_span": "common", "record_dropped_s": float(np.count_nonzero(out) * dt)}
+            if r.units.quantity == "acceleration":
+                span["record_dropped_max_abs_acceleration_m_per_s2"] = peak
+            joined.append(r._replace(span=span))
+            if out.any():
+                told.append(f"{r.path.name!r}: {np.count_nonzero(out) * dt:.4g} s"
+                            + (f" (largest |a| {peak / G:.3g} g)" if r.units.quantity == "acceleration" else ""))
+        warnings.warn(f"{_what(raws)}: components of different lengths ({names}) run over the {high - low:.6g} s all "
+                      f"cover, {low:g} to {high:g} s (pair_span: common); dropped " + "; ".join(told),
+                      PairWarning, stacklevel=3)
+        return joined, [window if window is not None else (low, high)] * len(raws)
+    not_acc = [r.path.name for r in raws if r.units.quantity != "acceleration"]
+    if not_acc:
+        raise ValueError(f"{_what(raws)}: pair_span: longest pads with zero acceleration, but {not_acc} hold(s) "
+                         f"velocity or displacement; use pair_span: common")
+    n = int(round((ends.max() - starts.min()) / dt)) + 1
+    cover = next((r.time for r in raws if r.time.size == n and r.time[0] == starts.min()), None)
+    time = cover if cover is not None else starts.min() + dt * np.arange(n)
+    padded, told = [], []
+    for r, offset in zip(raws, np.round(offsets).astype(int)):
+        values = np.zeros(n)
+        values[offset:offset + r.values.size] = r.values
+        extra = (n - r.values.size) * dt
+        padded.append(r._replace(time=time, values=values, span={"record_pair_span": "longest",
+                                                                  "record_padded_s": float(extra)}))
+        if extra:
+            told.append(f"{r.path.name!r}: {extra:.4g} s")
+    warnings.warn(f"{_what(raws)}: components of different lengths ({names}) padded with zero acceleration to the "
+                  f"longest, {float(time[0]):g} to {float(time[-1]):g} s (pair_span: longest): " + "; ".join(told),
+                  PairWarning, stacklevel=3)
+    return padded, [window] * len(raws)
 
 
 class RecordPair:
@@ -898,24 +1094,18 @@ class RecordPair:
         self.x, self.y = x, y
         self.azimuths = None if azimuths is None or None in azimuths else tuple(float(a) for a in azimuths)
         self.rotation = float(rotation)
+        self.frame, self.skew = np.eye(2), 0.0
         if self.azimuths is not None:
-            gap = (self.azimuths[1] - self.azimuths[0]) % 180.0
-            if abs(gap - 90.0) > 1e-6:
-                raise ValueError(f"record pair: the components' azimuths {self.azimuths[0]:g} and "
-                                 f"{self.azimuths[1]:g} degrees are not orthogonal: a pair is two orthogonal "
-                                 f"horizontal components")
-            a = np.radians(self.azimuths)
-            self.frame = np.array([[np.sin(a[0]), np.sin(a[1])], [np.cos(a[0]), np.cos(a[1])]])  # east, north rows
-        else:
-            self.frame = np.eye(2)
+            self.frame, self.skew = _frame(*self.azimuths)
 
     @property
     def orientation(self) -> str:
         """How x and y are placed: by the components' azimuths, or in file order."""
         if self.azimuths is None:
             return "file order: x the first component, y the second (the files name no directions)"
+        how = "" if not self.skew else f", resolved from axes {90.0 - abs(self.skew):g} degrees apart"
         return (f"x east, y north, from the components' azimuths {self.azimuths[0]:g} and {self.azimuths[1]:g} "
-                f"degrees (clockwise from north)")
+                f"degrees (clockwise from north){how}")
 
     def matrix(self, rotation=None) -> np.ndarray:
         """(..., 2, 2): the components (first, second) to (x, y), turned by ``rotation`` (degrees)."""
@@ -929,16 +1119,25 @@ class RecordPair:
         return np.einsum("...ij,...j->...i", self.matrix(rotation), components)
 
     @classmethod
-    def from_files(cls, paths, scale=1.0, window=None, baseline=None, units=None, rotation=0.0) -> RecordPair:
+    def from_files(cls, paths, scale=1.0, window=None, baseline=None, units=None, rotation=0.0,
+                   pair_span="common") -> RecordPair:
         """Read and process the two files ``paths = (x, y)`` as :meth:`Record.from_file` does,
         with the same ``scale``, ``window``, ``baseline`` and ``units`` (each file's own units
-        header is honoured; ``units`` must agree with it where it states units)."""
+        header is honoured; ``units`` must agree with it where it states units); files of different
+        lengths are joined by ``pair_span`` (:func:`read_components`)."""
         if isinstance(paths, (str, Path)) or len(paths) != 2:
             raise ValueError(f"record pair: expected two files [x, y], got {paths!r}")
         for i, p in enumerate(paths):
             if not isinstance(p, (str, Path)):
                 raise ValueError(f"record pair: file {i} must be a path, got {p!r}")
-        x, y = (Record.from_file(p, scale=scale, window=window, baseline=baseline, units=units) for p in paths)
+        (x, y), _ = read_components(paths, scale=scale, window=window, baseline=baseline, units=units,
+                                    pair_span=pair_span)
+        return cls.of(x, y, paths, rotation)
+
+    @classmethod
+    def of(cls, x: Record, y: Record, paths, rotation=0.0) -> RecordPair:
+        """The pair of the processed components ``x``, ``y`` read from the files ``paths``, placed by the
+        azimuths the files name (refused: the same file twice, a vertical component)."""
         if x.sha256 == y.sha256:
             same = "the same file" if Path(paths[0]).resolve() == Path(paths[1]).resolve() else "two identical files"
             raise ValueError(f"record pair: {str(paths[0])!r} and {str(paths[1])!r} are {same}: a pair is two "

@@ -14,6 +14,7 @@ from ._version import __version__
 from .mechanics import models
 from .mechanics.geometry import PARAMETERS, Geometry
 from .mechanics.kinematics import CORNERS, Q_NAMES, corner_diagnostics, interpenetration
+from .mechanics.structure import G
 
 DOI = "10.3390/buildings11020050"
 #: The time coordinate is ``t``: seconds elapsed since the start of the imposed ground motion.
@@ -251,6 +252,15 @@ def structure_variables(response, components, steps) -> dict:
     out["structure_sticking"] = variable(
         t, response.sticking[:steps].astype(np.int8), "1", "the superstructure sticks on the device (du/dt = 0)",
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="sliding sticking")
+    if response.normal is not None:
+        normal = response.normal[:steps]
+        out["vertical_acceleration"] = variable(t, (normal - 1.0) * G, "m s-2",
+                                                "vertical ground acceleration a_v (up positive)")
+        out["normal_ratio"] = variable(t, normal, "1", "normal force on the device over the supported weight, "
+                                                       "N/W = 1 + a_v/g (<= 0: the superstructure lifts off)")
+        out["uplift"] = variable(t, (normal <= 0.0).astype(np.int8), "1", "the superstructure lifts off its device "
+                                 "(N <= 0)", flag_values=np.array([0, 1], dtype=np.int8),
+                                 flag_meanings="seated lifted_off")
     return out
 
 

@@ -85,12 +85,15 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         warnings.warn(f"dt = {float(dt):g} s does not divide the excitation's duration "
                       f"({excitation.t_end - excitation.t_start:g} s): the history ends at t = {times[-1]:.6g} s, "
                       f"{left:.3g} s before the motion does", stacklevel=2)
-    response = None
+    response, lifted = None, None
     if structure is None:
         imposed = excitation.displacement(times)
     else:
         response = respond(excitation.ground_acceleration(), times, geometry, structure)
         imposed = 0.0 - (response.stroke[:, 0] if excitation.components == 1 else response.stroke)
+        lifted = _uplift(response, times, capacity, on_failure)
+        if lifted is not None:  # the history ends before the structure lifts off
+            times, imposed = times[:lifted], imposed[:lifted]
     run = runs.history(model, geometry, imposed, theta2_0,
                        azimuth=float(getattr(excitation, "azimuth", 0.0)), normals=normals, options=options,
                        capacity=capacity, on_failure=on_failure, times=times, progress=progress)
@@ -104,6 +107,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         ds = ds.assign(structure_variables(response, excitation.components, run.steps))
         ds.attrs.update(structure.attrs(geometry), structure_stroke_max_abs_m=response.peaks[0],
                         structure_shear_ratio_max_abs=response.peaks[1])
+        if response.normal is not None:
+            ds.attrs["structure_normal_ratio_min"] = response.peaks[2]
         ds.attrs["imposed_motion"] = ("minus the stroke: RB1 relative to RB3 is -u, u the superstructure's "
                                       "displacement relative to the ground")
     ds.attrs["capacity_policy"] = capacity
@@ -118,7 +123,48 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                         capacity_exceeded_displacement_m=run.reached["displacement"])
     if run.status == "stopped":
         ds.attrs["stopped_at_s"] = float(times[run.steps - 1])
+    if response is not None and response.uplift:
+        ds.attrs.update(uplift_attrs(response))
+        if lifted is not None and run.steps == lifted and not ds.attrs["failed"]:
+            if capacity == "stop":
+                ds.attrs.update(stopped_at_s=float(times[-1]), stopped_by="uplift")
+            else:  # capacity "error", marked
+                ds.attrs.update(failed=1, failure_time_s=response.uplift[0][0], failure_kind="uplift",
+                                failure_message=uplift_message(response))
     return ds
+
+
+class UpliftError(CapacityError):
+    """The superstructure lifts off its device (N = W (1 + a_v/g) <= 0) under capacity 'error'."""
+
+
+def uplift_message(response) -> str:
+    """What an uplift is: when it starts and ends, how often, the smallest N/W."""
+    (start, end), count = response.uplift[0], len(response.uplift)
+    return (f"the superstructure lifts off its device at t = {start:.6g} s (N/W = 1 + a_v/g <= 0 until "
+            f"t = {end:.6g} s; {count} time{'s' if count > 1 else ''} in all, smallest N/W "
+            f"{response.peaks[2]:.3g}): beyond it the model describes no real structure")
+
+
+def uplift_attrs(response) -> dict:
+    """The attributes of a structure's uplift: its first time, the total duration and the count."""
+    return {"uplift_at_s": response.uplift[0][0], "uplift_duration_s": float(sum(b - a for a, b in response.uplift)),
+            "uplift_count": len(response.uplift)}
+
+
+def _uplift(response, times, capacity, on_failure) -> int | None:
+    """How many steps a history keeps when its structure lifts off under ``capacity`` 'stop' or 'error'
+    (those before the first uplift), None where it runs on (no uplift, or 'continue', which flags it).
+    Under 'error' with on_failure 'error' it raises :class:`UpliftError`."""
+    if not response.uplift:
+        return None
+    if capacity == "continue":
+        warnings.warn(uplift_message(response) + "; the history goes on (capacity: continue), flagged",
+                      stacklevel=3)
+        return None
+    if capacity == "error" and on_failure != "mark":
+        raise UpliftError(uplift_message(response) + " (capacity: error)")
+    return max(2, int(np.searchsorted(times, response.uplift[0][0], side="left")))
 
 
 def _check_arguments(geometry, excitation, theta2_0, structure):

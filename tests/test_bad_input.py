@@ -74,7 +74,7 @@ CLI_ROWS = [
     ("sine and structure keys", {"excitation": {**CASE["excitation"], "omega": float("inf"), "duration": -1.0},
                                  "structure": {"friction": 1.5, "damping": -0.1}}, {}, 2,
      r"4 errors:\n  - excitation.duration: must be > 0, got -1.0\n  - excitation.omega: expected a finite number, "
-     r"got inf\n  - structure.friction: 1.5 is outside 0 < μ < 1\n  - structure.damping: -0.1 is outside 0 <= ζ < 1"),
+     r"got inf\n  - structure.friction: 1.5 is outside 0 <= μ < 1\n  - structure.damping: -0.1 is outside 0 <= ζ < 1"),
     ("amplitude word", {"excitation": {**CASE["excitation"], "amplitude": "Capacity"}}, {}, 2,
      r"excitation.amplitude: expected a number \(m\) or the word 'capacity' .*got the string 'Capacity'"),
 ]

@@ -136,18 +136,18 @@ def test_dccss_run_on_a_record_pair(tmp_path, capsys):
     assert np.allclose(ds["Xg_y"].values, y.displacement(ds["t"].values), rtol=0, atol=1e-15)
 
 
-def test_unequal_components_are_refused_and_nothing_is_written(tmp_path, capsys):
-    short = tmp_path / "short.AT2"
+def test_components_of_different_steps_are_refused_and_nothing_is_written(tmp_path, capsys):
+    coarse = tmp_path / "coarse.AT2"
     lines = (RECORDS / "synthetic_y.AT2").read_text().splitlines()
     shutil.copy(RECORDS / "synthetic.AT2", tmp_path / "x.AT2")
     header, values = lines[:4], " ".join(lines[4:]).split()[:1500]
-    header[3] = header[3].replace("2000", "1500")
-    short.write_text("\n".join(header + [" ".join(values[i:i + 5]) for i in range(0, 1500, 5)]) + "\n")
-    case = _case(tmp_path, {"kind": "record", "file": ["x.AT2", "short.AT2"]})
+    header[3] = header[3].replace("2000", "1500").replace(".01", ".02")
+    coarse.write_text("\n".join(header + [" ".join(values[i:i + 5]) for i in range(0, 1500, 5)]) + "\n")
+    case = _case(tmp_path, {"kind": "record", "file": ["x.AT2", "coarse.AT2"]})
     out = tmp_path / "out.nc"
     assert cli.main(["run", str(case), "-o", str(out)]) == 2
     err = capsys.readouterr().err
-    assert "excitation.file" in err and "short.AT2" in err
+    assert "excitation.file" in err and "coarse.AT2" in err and "must share their step" in err
     assert not out.exists()
 
 

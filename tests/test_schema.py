@@ -117,7 +117,7 @@ def test_the_case_keys_and_defaults_come_from_the_schema():
                              "capacity": "continue", "on_failure": "error", "structure": None}
     assert case.EXCITATION_KEYS["record"] == ("file",)
     assert case.EXCITATION_OPTIONAL["record"] == ("scale", "window", "baseline", "units", "azimuth", "rotation",
-                                                  "component")
+                                                  "component", "vertical", "pair_span")
     assert schema.errors("case", CASE) == []
 
 

@@ -122,7 +122,7 @@ def test_the_structures_statistics_keep_the_records_whose_pad_fails(suite):
     ({"record": ["records/*.DT2"]}, r"sweep\.record\[0\]: the pattern 'records/\*\.DT2' matches no file"),
     ({"record": ["records/RSN11_NORTH.AT2", "records/*.AT2"]}, r"two records are named 'RSN11_NORTH'"),
     ({"record": [["records/RSN11_NORTH.AT2"]]}, r"sweep\.record\[0\]: a pair is a list of two files"),
-    ({"record": [3]}, r"sweep\.record\[0\]: expected a file, a pair \[x, y\] or a pattern"),
+    ({"record": [3]}, r"sweep\.record\[0\]: expected a file, a pair \[x, y\], a pattern, a mapping"),
 ])
 def test_bad_record_axes_are_refused(suite, sweep, message):
     with pytest.raises(StudyError, match=message):

@@ -121,7 +121,8 @@ def test_a_dependent_key_is_checked_once_what_it_depends_on_passed(tmp_path):
         case_from(bad, tmp_path)
     assert err.value.messages == [
         "prototype: unknown prototype 'DFP9'; known: ['DFP1', 'DFP2']",
-        "excitation: unknown key(s) ['omgea']; known: ['amplitude', 'azimuth', 'duration', 'kind', 'omega', 'scale']",
+        "excitation: unknown key(s) ['omgea']; known: ['amplitude', 'azimuth', 'duration', 'kind', 'omega', 'scale', "
+        "'vertical']",
         "excitation: missing key(s) ['amplitude', 'omega', 'duration']",
         "normals: must be one of ['signed', 'unsigned'], got 'absolute'"]
 

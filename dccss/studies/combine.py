@@ -9,9 +9,10 @@ from ..excitation import underlying
 from ..mechanics.geometry import PARAMETERS, Geometry
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
-from ..mechanics.structure import G
+from ..mechanics.structure import VERTICAL_SUMMARIES, G
 from ..mechanics.summaries import model_specific, specs
 from ..results import global_attrs, variable
+from .spec import entry_files
 
 
 def axis_variable(dims, name, values):
@@ -78,7 +79,7 @@ def combine(study, chunks: dict) -> xr.Dataset:
         ds = ds.drop_vars([n for n in study.axes if n in ds])
         variables = {}
         summaries = specs()
-        for name in {**summaries, **STRUCTURE_SUMMARIES}:
+        for name in {**summaries, **STRUCTURE_SUMMARIES, **VERTICAL_SUMMARIES}:
             if name in ds:
                 variables[name] = xr.Variable(dims, ds[name].values.reshape(grid.shape), ds[name].attrs)
             elif name in model_specific():
@@ -129,7 +130,7 @@ def record_peaks(study) -> dict:
         values = []
         for excitation in study.records.values():
             a = excitation.attrs()
-            keys = [k for k in a if k.endswith(attr) and k.startswith("record_")]
+            keys = [k for k in a if k.endswith(attr) and k.startswith("record_") and "vertical" not in k]
             if keys:
                 values.append(max(float(a[k]) for k in keys))
             elif attr == "pgd_m":  # a table: its samples (scaled as the study scales them)
@@ -139,7 +140,7 @@ def record_peaks(study) -> dict:
                 values.append(np.nan)
         pair = " (the larger of a pair's components)" if study.excitation.components == 2 else ""
         out[name] = xr.Variable(("record",), np.array(values), {"units": units, "long_name": long_name + pair})
-    sources = [" ".join(e) if isinstance(e, list) else e for e in study.record_entries.values()]
+    sources = [" ".join(entry_files(e)) for e in study.record_entries.values()]
     out["record_source"] = xr.Variable(("record",), np.array(sources, dtype=object),
                                        {"long_name": "the record's file (a pair's two files, in the order given)"})
     attrs = [excitation.attrs() for excitation in study.records.values()]
@@ -210,7 +211,7 @@ def statistics(ds) -> xr.Dataset:
         flag = name in ("failed", "capacity_exceeded") or name.startswith("record_") or name.endswith("_time")
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
-        counted = xr.ones_like(ok) if name in STRUCTURE_SUMMARIES else ok
+        counted = xr.ones_like(ok) if name in STRUCTURE_SUMMARIES or name in VERTICAL_SUMMARIES else ok
         size = name.endswith("_end")
         values = abs(var.where(counted)) if size else var.where(counted)
         logs = np.log(values.where(values > 0))
@@ -226,6 +227,9 @@ def statistics(ds) -> xr.Dataset:
         units="1", long_name="number of records whose run fails (left out of the pad's suite statistics)")
     out["records_counted"] = ok.sum("record").astype(np.int32).assign_attrs(
         units="1", long_name="number of records the suite statistics of the pad are over (the structure's: all)")
+    if "uplift_count" in ds:
+        out["records_uplift"] = (ds["uplift_count"] > 0).sum("record").astype(np.int32).assign_attrs(
+            units="1", long_name="number of records under which the structure lifts off its device (N <= 0)")
     n = ds.sizes["record"]
     for what in ("capacity_exceeded", "failed"):
         out[f"records_{what}_fraction"] = (out[f"records_{what}"] / n).assign_attrs(

@@ -146,11 +146,11 @@ class Grid:
         responses, parameters = [], self.own(cases, excitation)
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
             own = {k: v[i] for k, v in parameters.items()}
-            factor = float(values["scale"][i]) if "scale" in values else 1.0
+            scale = float(values["scale"][i]) if "scale" in values else 1.0
+            factor = scale  # a swept scale is the record's: its vertical's too; a component keeps the vertical
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
-            ground = excitation.ground_acceleration(**own)
-            ground = structure.Ground(ground.time, ground.a0 * factor, ground.a1 * factor)
+            ground = excitation.ground_acceleration(**own).scaled(factor, vertical=scale)
             response = structure.respond(ground, t, device, mine)
             out[:, i] = 0.0 - response.stroke
             responses.append(response)

@@ -13,8 +13,10 @@ from ..mechanics.newton import ConvergenceError
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.summaries import TILT_SUMMARIES, specs
 from ..results import variable
+from ..simulation import UpliftError, uplift_message
 from .combine import axis_variable, study_attrs
 from .grid import PLATE3_FOLLOWS
+from .spec import entry_excitation
 
 
 def structure_summaries(responses) -> dict:
@@ -24,8 +26,31 @@ def structure_summaries(responses) -> dict:
     out = {name: np.full(len(responses), np.nan) for name in STRUCTURE_SUMMARIES} if responses else {}
     for i, response in enumerate(responses):
         for name, value in structure.summarize(response).items():
-            out[name][i] = value
+            out.setdefault(name, np.full(len(responses), np.nan))[i] = value
     return out
+
+
+def _lifted_off(part, responses, study, model, points) -> dict:
+    """The pad's summaries with the cases whose structure lifts off (N <= 0) under capacity 'stop' or 'error'
+    marked failed at their first uplift (NaN summaries, as a failed case): such a run is no ordinary
+    result. Under 'error' with on_failure 'error' the study stops, naming the sweep point."""
+    lifted = [i for i, r in enumerate(responses) if r.uplift]
+    if not lifted or study.capacity == "continue":
+        return part
+    if study.capacity == "error" and study.options.on_failure != "mark":
+        where = ", ".join(f"{k}={v}" for k, v in points[lifted[0]].items())
+        raise UpliftError(f"sweep point {where} ({model}): " + uplift_message(responses[lifted[0]]) +
+                          " (capacity: error)")
+    part = {name: np.array(values, copy=True) for name, values in part.items()}
+    for i in lifted:
+        for name, values in part.items():
+            if name == "failed":
+                values[i] = 1
+            elif name == "failure_time":
+                values[i] = responses[i].uplift[0][0]
+            elif name != "capacity_exceeded" and name != "capacity_time" and np.issubdtype(values.dtype, np.floating):
+                values[i] = np.nan
+    return part
 
 
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:
@@ -51,9 +76,11 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             where = grid.point(group[index[0]]) if index else f"of chunk {k}"
             raise type(err)(f"sweep point {where} ({model}): {err}") from None
         own = structure_summaries(responses)
+        part = _lifted_off(part, responses, study, model, [grid.point(c) for c in group])
         for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
-    names = {**specs(), **STRUCTURE_SUMMARIES, **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
+    names = {**specs(), **STRUCTURE_SUMMARIES, **structure.VERTICAL_SUMMARIES,
+             **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
     data = {name: variable(("case",), v, *names[name]) for name, v in out.items()}
     for flag in ("capacity_exceeded", "failed"):
         data[flag].data = data[flag].data.astype(np.int8)
@@ -80,7 +107,7 @@ def history_mapping(study, i, model) -> dict:
         full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
     excitation = dict(study.excitation_spec)
     if "record" in point:
-        excitation["file"] = study.record_entries[point["record"]]
+        excitation = entry_excitation(excitation, point["record"], study.record_entries[point["record"]])
     if study.suite_factor is not None:  # a suite scaled over a period range: the factor all its records set
         excitation["scale"] = {**excitation["scale"], "suite_factor": study.suite_factor}
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):

@@ -94,35 +94,38 @@ def sweep_spec(config: dict, models=None, record=None, suite_factor=None) -> dic
     return spec
 
 
+#: the keys of a suite's record given as a mapping: its file(s) and its own settings, which replace the
+#: study's ``excitation`` keys for it; ``peer_scale`` and ``peer_rsn`` are what a PEER download's
+#: records carry (``{peer: _SearchResults.csv}``)
+RECORD_KEYS = ("file", "name", "window", "scale", "rotation", "vertical", "pair_span", "peer_scale", "peer_rsn")
+#: the keys of a PEER download entry of a suite
+PEER_KEYS = ("peer", "vertical")
+
+
 def record_entries(spec, base: Path) -> dict:
-    """{name: entry} of a ``record`` sweep axis: a list of files, pairs [x, y] of files, or glob patterns
-    (relative to ``base``; a pattern gives its matches in sorted order). A file is named by its stem, a
-    pair by its station: the stems' common start (without trailing separators, nor a digit the two
-    components' three-digit azimuth codes share, as 000 and 090), else 'x+y'."""
+    """{name: entry} of a ``record`` sweep axis: a list of files, pairs [x, y] of files, glob patterns
+    (relative to ``base``; a pattern gives its matches in sorted order), mappings of one record's file
+    and own settings (:data:`RECORD_KEYS`), or PEER downloads ``{peer: .../_SearchResults.csv,
+    vertical: true}`` (each of its records a mapping, named ``RSN<number>_<station>``,
+    ``dccss.peer.suite_entries``). A file is named by its stem, a pair by its station: the stems'
+    common start (without trailing separators, nor a digit the two components' three-digit azimuth
+    codes share, as 000 and 090), else 'x+y'; a mapping by its ``name``, else by its file(s)."""
     if not isinstance(spec, list) or not spec:
-        raise StudyError(f"sweep.record: expected a non-empty list of files, pairs [x, y] or patterns, got {spec!r}")
+        raise StudyError(f"sweep.record: expected a non-empty list of files, pairs [x, y], patterns, mappings or "
+                         f"PEER downloads, got {spec!r}")
     out = {}
     for i, entry in enumerate(spec):
         key = f"sweep.record[{i}]"
-        if isinstance(entry, list):
-            if len(entry) != 2 or not all(isinstance(f, str) for f in entry):
-                raise StudyError(f"{key}: a pair is a list of two files [x, y], got {entry!r}")
-            stems = [Path(f).stem for f in entry]
-            codes = [re.fullmatch(r"(.*?)\d{3}", stem) for stem in stems]  # azimuth codes: ..._000, ..._090
-            starts = [c.group(1) for c in codes] if all(codes) else stems  # 000 and 090 share a digit, not a name
-            common = os.path.commonprefix(starts).rstrip("_-. ")
-            items = [(common if common and common not in stems else "+".join(stems), entry)]
-        elif isinstance(entry, str):
-            if any(c in entry for c in "*?["):
-                matches = sorted(str(p.relative_to(base)) for p in base.glob(entry) if p.is_file())
-                if not matches:
-                    raise StudyError(f"{key}: the pattern {entry!r} matches no file under {str(base)!r}")
-                items = [(Path(m).stem, m) for m in matches]
-            else:
-                items = [(Path(entry).stem, entry)]
+        if isinstance(entry, dict) and "peer" in entry:
+            items = _peer_items(entry, key, base)
+        elif isinstance(entry, dict):
+            check_keys(entry, key, ("file",), tuple(k for k in RECORD_KEYS if k != "file"))
+            name = entry.get("name")
+            if name is not None and not isinstance(name, str):
+                raise StudyError(f"{key}.name: expected a string, got {name!r}")
+            items = [(name or _entry_name(entry["file"], f"{key}.file", base)[0][0], entry)]
         else:
-            raise StudyError(f"{key}: expected a file, a pair [x, y] or a pattern, got {type(entry).__name__} "
-                             f"{entry!r}")
+            items = _entry_name(entry, key, base)
         for name, value in items:
             name = re.sub(r"[^A-Za-z0-9_.+-]", "_", name)
             if name in out:
@@ -130,6 +133,66 @@ def record_entries(spec, base: Path) -> dict:
                                  f"named by their file stems (a pair by its station): rename one")
             out[name] = value
     return out
+
+
+def _entry_name(entry, key, base) -> list:
+    """[(name, entry)] of a file, a pair [x, y] or a pattern (its matches)."""
+    if isinstance(entry, list):
+        if len(entry) != 2 or not all(isinstance(f, str) for f in entry):
+            raise StudyError(f"{key}: a pair is a list of two files [x, y], got {entry!r}")
+        stems = [Path(f).stem for f in entry]
+        codes = [re.fullmatch(r"(.*?)\d{3}", stem) for stem in stems]  # azimuth codes: ..._000, ..._090
+        starts = [c.group(1) for c in codes] if all(codes) else stems  # 000 and 090 share a digit, not a name
+        common = os.path.commonprefix(starts).rstrip("_-. ")
+        return [(common if common and common not in stems else "+".join(stems), entry)]
+    if isinstance(entry, str):
+        if any(c in entry for c in "*?["):
+            matches = sorted(str(p.relative_to(base)) for p in base.glob(entry) if p.is_file())
+            if not matches:
+                raise StudyError(f"{key}: the pattern {entry!r} matches no file under {str(base)!r}")
+            return [(Path(m).stem, m) for m in matches]
+        return [(Path(entry).stem, entry)]
+    raise StudyError(f"{key}: expected a file, a pair [x, y], a pattern, a mapping {{file, window, scale, ...}} or "
+                     f"a PEER download {{peer: _SearchResults.csv}}, got {type(entry).__name__} {entry!r}")
+
+
+def _peer_items(entry, key, base) -> list:
+    """[(name, mapping)] of the records of a PEER download (``{peer: csv, vertical: bool}``)."""
+    from ..peer import suite_entries
+
+    check_keys(entry, key, ("peer",), ("vertical",))
+    if not isinstance(entry["peer"], str):
+        raise StudyError(f"{key}.peer: expected the path of a download's _SearchResults.csv, got {entry['peer']!r}")
+    vertical = entry.get("vertical", False)
+    if not isinstance(vertical, bool):
+        raise StudyError(f"{key}.vertical: expected true (each record's vertical component too) or false, got "
+                         f"{vertical!r}")
+    try:
+        found = suite_entries(entry["peer"], base, vertical=vertical)
+    except ValueError as err:
+        raise StudyError(f"{key}.peer: {err}") from None
+    return [(name, {"name": name, **record}) for name, record in found.items()]
+
+
+def entry_files(entry) -> list:
+    """The files of a record entry: its file or pair, and its vertical component's file."""
+    own = entry if isinstance(entry, dict) else {"file": entry}
+    files = own["file"] if isinstance(own["file"], list) else [own["file"]]
+    return files + ([own["vertical"]] if isinstance(own.get("vertical"), str) else [])
+
+
+def entry_excitation(spec, name, entry) -> dict:
+    """The excitation mapping of a suite's record ``name``: the study's ``excitation`` keys with the
+    record's file and own settings; ``scale: peer`` takes its factor from its PEER search results."""
+    own = entry if isinstance(entry, dict) else {"file": entry}
+    mapping = {**spec, **{k: v for k, v in own.items() if k not in ("name", "peer_scale", "peer_rsn")}}
+    if mapping.get("scale") == "peer":
+        if "peer_scale" not in own:
+            raise StudyError(f"excitation.scale: 'peer' takes each record's factor from the PEER search results it "
+                             f"comes from (sweep.record: [{{peer: .../_SearchResults.csv}}]), but record {name!r} "
+                             f"is not from one: give it a scale of its own ({{file: ..., scale: ...}})")
+        mapping["scale"] = own["peer_scale"]
+    return mapping
 
 
 @dataclass
@@ -304,10 +367,10 @@ def _excitations(config, axes, base, geometry):
 
 def _record_excitation(name, entry, spec, axes, base, geometry):
     """The excitation of a suite's record ``name`` (its file(s) ``entry`` with the study's ``excitation``
-    keys); an error names the key the file has (``sweep.record`` for the file, ``excitation.<key>`` for
-    the others) and the record."""
+    keys, or a mapping's own); an error names the key the file has (``sweep.record`` for the file,
+    ``excitation.<key>`` for the others) and the record."""
     try:
-        excitation = excitation_from({**spec, "file": entry}, base, geometry)
+        excitation = excitation_from(entry_excitation(spec, name, entry), base, geometry)
     except CaseError as err:
         raise StudyError(*(re.sub(r"^excitation\.file\b", "sweep.record", m) + f" (record {name!r})"
                            for m in err.messages)) from None

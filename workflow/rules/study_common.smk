@@ -9,6 +9,7 @@ from snakemake.exceptions import WorkflowError
 from dccss.case import CaseError
 from dccss.mechanics.models import REGISTRY
 from dccss.studies import Study, history_mapping, sweep_spec
+from dccss.studies.spec import entry_files
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
 # relative to the working directory, as a job's parameter: a project moved or copied whole reruns nothing
@@ -30,7 +31,7 @@ def study_files(record=None):
     target = _paths(scale["target"]) if isinstance(scale, dict) and isinstance(scale.get("target"), str) else []
     if STUDY.records:
         names = [record] if record else list(STUDY.record_entries)
-        return [p for name in names for p in _paths(STUDY.record_entries[name])] + target
+        return [p for name in names for p in _paths(entry_files(STUDY.record_entries[name]))] + target
     return _paths(STUDY.excitation_spec.get("file", [])) + target
 
 
