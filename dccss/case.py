@@ -23,9 +23,13 @@ Format (lengths in m, angles in degrees, times in s)::
                 # - {kind: table, file: motion.csv}  with the CSV header `time, x, y` (m); a header
                 #     with x but no y (or displacement and x/y) is refused
                 # - {kind: record, file: [x.AT2, y.AT2], scale: .., window: [t0, t1], baseline: ..,
-                #     units: ..}  a record pair (dccss.records.RecordPair): both files processed as
-                #     one record, each with its own units header; their sample times after the
-                #     window must be equal (same dt and npts; never resampled)
+                #     units: .., pair_span: common}  a record pair (dccss.records.RecordPair): both
+                #     files processed as one record, each with its own units header; files of
+                #     different lengths (same dt) run over the time both cover (pair_span: common)
+                #     or padded with zero acceleration (longest); never resampled
+                # a record takes `vertical: V.AT2`, its vertical component (processed with it), or any
+                #   kind `vertical: {kind: sine, amplitude: 3.0, omega: 12.0}` (m/s2): it acts on an
+                #   isolated structure's normal force N = W (1 + a_v/g)
                 # a record pair is placed x east, y north by its PEER files' component azimuths
                 #   (line 2), whatever their order (else in file order), and `rotation: 30.0` turns it
                 # a two-component table or record pair takes no `azimuth`, but may take

@@ -97,9 +97,12 @@ Two components
 --------------
 A :class:`RecordPair` is a bidirectional ground motion: two records, the x and y components,
 each processed as above with the same scale, window and baseline (each file's units its own).
-Their sample times after the window must be the same (equal npts, times within 1e-9 of the
-step); different steps or lengths are refused, naming both files with their dt and npts:
-nothing is resampled.
+Components of the same step but different lengths are joined (:func:`read_components`): over the
+time both cover (``pair_span="common"``, a window over it) or the shorter padded with zero
+acceleration (``"longest"``); different steps are refused, naming both files with their dt and
+npts: nothing is resampled. Components whose axes are not at right angles are resolved onto east
+and north (:func:`_frame`). A record's vertical component is read with its horizontals by
+:func:`read_components` (same processing and span; a ``DWN`` channel negated).
 
 Errors are ``ValueError``s that name the file (or the ``source`` of arrays), the line where there
 is one, and the problem.
@@ -1051,14 +1054,16 @@ class RecordPair:
     **Orientation.** ``azimuths`` are the components' directions in degrees clockwise from north
     (a PEER file's line 2, :func:`peer_azimuth`): given both, the pair's motion is placed in one
     right-handed frame, **x east and y north** (z up), whatever the order of the files, by
-    x = Σ c_i sin az_i, y = Σ c_i cos az_i; the components must be horizontal and orthogonal.
+    x = Σ c_i sin az_i, y = Σ c_i cos az_i for orthogonal axes, and in general the 2 x 2 solve of
+    each sensor reading the projection of the motion on its axis (axes at least
+    :data:`MIN_AXES_ANGLE` apart).
     Without them (text files, a header that names no direction) x is the first component and y the
     second (``orientation`` says which). ``rotation`` (degrees, from x towards y) then turns the
     motion; it is also a parameter per case (``displacement(t, rotation=...)``, a sweep axis).
 
-    Both must have the same sample times after the window (equal npts, and times equal within
-    1e-9 of the step): two components with different steps or lengths are refused, never
-    resampled. ``displacement(t)`` and ``velocity(t)`` interpolate each component linearly and
+    Both must have the same sample times (equal npts, and times equal within 1e-9 of the step):
+    :meth:`from_files` joins files of different lengths first (``pair_span``); different steps are
+    refused, never resampled. ``displacement(t)`` and ``velocity(t)`` interpolate each component linearly and
     return shape t.shape + (2,) (x, y in m, m/s).
 
     Attributes

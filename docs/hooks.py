@@ -219,6 +219,7 @@ def cli_page() -> str:
 
 def _examples():
     from dccss import Oriented, Sine, simulate
+    from dccss.excitation import Vertical, VerticalSine
     from dccss.mechanics.structure import Structure
     from dccss.paper.prototypes import DFP1
 
@@ -232,6 +233,11 @@ def _examples():
             simulate(DFP1, Oriented(sine, 30.0), model="stick_slip", dt=0.01),
         ("What a structure adds", "With `structure:` (one component; a pair adds `_x` and `_y`)."):
             simulate(DFP1, sine, model="compliant", dt=0.01, structure=Structure(friction=0.05)),
+        ("What a vertical component adds", "With `excitation.vertical` and a structure "
+         "([the vertical component](../how-to/records.md#vertical)); an uplift adds `uplift_at_s`, "
+         "`uplift_duration_s`, `uplift_count` and, under `capacity: stop`, `stopped_by`."):
+            simulate(DFP1, Vertical(sine, VerticalSine(3.0, 40.0)), model="compliant", dt=0.01,
+                     structure=Structure(friction=0.05)),
     }
 
 
@@ -262,12 +268,13 @@ def _summaries() -> list[str]:
            "A study's dataset (`results/studies/<name>/<name>.nc`) has a dimension `model` and one per sweep "
            "axis, and for each case:", "", "| variable | units | long name |", "|---|---|---|"]
     rows = {**summaries.specs(), **{f"{k} (bidirectional)": v for k, v in summaries.TILT_SUMMARIES.items()},
-            **structure.SUMMARIES}
+            **structure.SUMMARIES, **{f"{k} (with a vertical)": v for k, v in structure.VERTICAL_SUMMARIES.items()}}
     for name, (units, long_name) in rows.items():
         out.append(f"| `{name}` | {units} | {_cell(long_name)} |")
     out += ["", f"A `record` axis (a suite) adds, for every summary, `<name>_suite` with a `statistic` coordinate "
             f"({', '.join(f'`{s}`' for s in STATISTICS)}), and `record_pga`, `record_pgv`, `record_pgd`, "
-            "`record_source`, `records_counted`, `records_failed` and `records_capacity_exceeded` "
+            "`record_source`, `records_counted`, `records_failed`, `records_capacity_exceeded` (and, with a "
+            "vertical, `records_uplift`) "
             "([A real record or a suite](../how-to/records.md#record-suites)).", ""]
     return out
 
