@@ -304,19 +304,9 @@ def _scaled_to_spectrum(record, read, spec, pair, key):
     """The record read again (windowed, if it is) at the scale that makes the spectral acceleration of
     ``record`` (the whole record) the target's."""
     from .records import G
-    from .spectra import PAIR_DEFINITIONS, spectral_acceleration
+    from .spectra import spectral_acceleration
 
-    choice(spec.get("to"), f"{key}.to", ("spectral_acceleration", "spectrum"))
-    check_keys(spec, key, ("to", "period", "target"), ("damping", "definition"))
-    period = number(spec["period"], f"{key}.period", positive=True)
-    target = number(spec["target"], f"{key}.target", positive=True)
-    damping = number(spec.get("damping", 0.05), f"{key}.damping")
-    if not 0 <= damping < 1:
-        raise CaseError(f"{key}.damping: {damping!r} is outside 0 <= damping < 1")
-    definition = choice(spec.get("definition", "rotd50"), f"{key}.definition", PAIR_DEFINITIONS)
-    if not pair and "definition" in spec:
-        raise CaseError(f"{key}.definition: says how a pair's spectral acceleration is taken; this record has one "
-                        f"component")
+    period, target, damping, definition = spectral_scaling(spec, pair, key)
     duration = record.t_end - record.t_start
     if period > duration:
         raise CaseError(f"{key}.period: {period:g} s is longer than the record ({duration:g} s): an oscillator of that "
@@ -330,6 +320,24 @@ def _scaled_to_spectrum(record, read, spec, pair, key):
                       "record_scaling_damping": damping, "record_sa_unscaled_g": unscaled / G,
                       **({"record_scaling_definition": definition} if pair else {})}
     return scaled
+
+
+def spectral_scaling(spec, pair, key="excitation.scale"):
+    """The keys of a scaling to a spectral acceleration, checked: (period, target, damping, definition)."""
+    from .spectra import PAIR_DEFINITIONS
+
+    choice(spec.get("to"), f"{key}.to", ("spectral_acceleration", "spectrum"))
+    check_keys(spec, key, ("to", "period", "target"), ("damping", "definition"))
+    period = number(spec["period"], f"{key}.period", positive=True)
+    target = number(spec["target"], f"{key}.target", positive=True)
+    damping = number(spec.get("damping", 0.05), f"{key}.damping")
+    if not 0 <= damping < 1:
+        raise CaseError(f"{key}.damping: {damping!r} is outside 0 <= damping < 1")
+    definition = choice(spec.get("definition", "rotd50"), f"{key}.definition", PAIR_DEFINITIONS)
+    if not pair and "definition" in spec:
+        raise CaseError(f"{key}.definition: says how a pair's spectral acceleration is taken; this record has one "
+                        f"component")
+    return period, target, damping, definition
 
 
 def _scaled_over_range(identity, read, whole, spec, pair, key, base):

@@ -447,3 +447,24 @@ def test_a_suites_range_scaling_errors_are_the_studys_not_a_records(suite):
     with pytest.raises(StudyError, match=r"excitation.scale.periods: 50 s is longer than the record .* \(record "
                                          r"'RSN11_NORTH'\)"):
         Study.from_config(config, suite)
+
+
+@pytest.mark.parametrize(("scale", "message"), [
+    ({"to": "spectral_acceleration", "period": 2.0, "target": 0.2, "damping": 1.5},
+     r"^excitation\.scale\.damping: 1\.5 is outside 0 <= damping < 1$"),
+    ({"to": "spectral_acceleration", "period": 2.0, "target": -0.2}, r"^excitation\.scale\.target: must be > 0, got -0\.2$"),
+    ({"to": "spectrum", "target": {"period": [0.1, 1.0, 3.0], "sa": [0.5, 0.5, 0.2]}, "periods": [0.2, 5.0]},
+     r"^excitation\.scale\.periods: the range \[0\.2, 5\.0\] s is not within the target's periods 0\.1 to 3 s$"),
+])
+def test_a_suites_scaling_mistakes_name_no_record(suite, scale, message):
+    """A target or period range is the suite's: its mistakes named no record (before, the first record's
+    name ended the message of a spectral-acceleration scaling's, "(record 'RSN11_NORTH')")."""
+    with pytest.raises(StudyError, match=message):
+        Study.from_config({**CONFIG, "excitation": {"kind": "record", "scale": scale}, "sweep": {"record":
+                                                                                                ["records/*.AT2"]}},
+                          suite)
+    # a record's own problem still names it
+    with pytest.raises(StudyError, match=r"longer than the record .*\(record 'RSN11_NORTH'\)"):
+        Study.from_config({**CONFIG, "excitation": {"kind": "record", "scale": {"to": "spectral_acceleration",
+                                                                                  "period": 9.5, "target": 0.2}},
+                           "sweep": {"record": ["records/*.AT2"]}}, suite)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import excitation_from, geometry_from, newton_from, range_scaling, structure_from
+from ..case import excitation_from, geometry_from, newton_from, range_scaling, spectral_scaling, structure_from
 from ..checks import CaseError, Problems, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step, underlying
 from ..mechanics import registry
@@ -343,9 +343,10 @@ def _excitations(config, axes, base, geometry):
     axes = {"record": np.array(list(entries), dtype=str), **axes}  # a record's cases come together
     scale = spec.get("scale")
     ranged = isinstance(scale, dict) and scale.get("to") == "spectrum"
-    if ranged:  # the suite's scaling, checked once
+    if isinstance(scale, dict):  # the suite's scaling, checked once: its mistakes are no record's
         try:
-            range_scaling(scale, all(isinstance(e, list) for e in entries.values()), "excitation.scale", base)
+            (range_scaling if ranged else spectral_scaling)(scale, _pairs(entries), "excitation.scale",
+                                                            *([base] if ranged else []))
         except CaseError as err:
             raise StudyError(*err.messages) from None
     first = ranged and "suite_factor" not in scale
@@ -363,6 +364,11 @@ def _excitations(config, axes, base, geometry):
         spec = {**spec, "scale": {**scale, "suite_factor": suite}}
         records = {name: _record_excitation(name, entry, spec, axes, base, geometry) for name, entry in entries.items()}
     return next(iter(records.values())), records, axes
+
+
+def _pairs(entries) -> bool:
+    """Whether every entry of a record axis is a pair [x, y] (a file or a mapping's)."""
+    return all(isinstance(e["file"] if isinstance(e, dict) else e, list) for e in entries.values())
 
 
 def _record_excitation(name, entry, spec, axes, base, geometry):
