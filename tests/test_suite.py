@@ -452,7 +452,8 @@ def test_a_suites_range_scaling_errors_are_the_studys_not_a_records(suite):
 @pytest.mark.parametrize(("scale", "message"), [
     ({"to": "spectral_acceleration", "period": 2.0, "target": 0.2, "damping": 1.5},
      r"^excitation\.scale\.damping: 1\.5 is outside 0 <= damping < 1$"),
-    ({"to": "spectral_acceleration", "period": 2.0, "target": -0.2}, r"^excitation\.scale\.target: must be > 0, got -0\.2$"),
+    ({"to": "spectral_acceleration", "period": 2.0, "target": -0.2},
+     r"^excitation\.scale\.target: must be > 0, got -0\.2$"),
     ({"to": "spectrum", "target": {"period": [0.1, 1.0, 3.0], "sa": [0.5, 0.5, 0.2]}, "periods": [0.2, 5.0]},
      r"^excitation\.scale\.periods: the range \[0\.2, 5\.0\] s is not within the target's periods 0\.1 to 3 s$"),
 ])
