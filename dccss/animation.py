@@ -41,7 +41,17 @@ from .mechanics.kinematics import CORNERS, Q_NAMES, interpenetration
 from .mechanics.models import REGISTRY
 from .mechanics.newton import NewtonOptions
 from .results import MODEL_TITLES, failure_of, geometry_from_attrs, has_structure
-from .viewer import DPI, FIGSIZE, AnimationError, events, is_real, open_result, run_command, run_notes  # noqa: F401
+from .viewer import (
+    DPI,
+    FIGSIZE,
+    AnimationError,
+    case_text,
+    events,
+    is_real,
+    open_result,
+    run_command,
+    run_notes,
+)
 
 FORMATS = (".gif", ".html", ".mp4")
 MAX_FPS = 50  # GIF delays are whole hundredths of a second, and viewers slow down delays below 0.02 s
@@ -217,7 +227,7 @@ class Scene:
     ds : time-history dataset (the shown time range).
     frames : indices of the steps to be shown: they fix the drawing limits and zoom windows.
     exaggeration : magnification of the interpenetration spikes; None: automatic, 0: none.
-    name : text added to the heading (e.g. the file name).
+    name : what the history is of, after the model and the device in the heading (``viewer.case_text``).
 
     Attributes
     ----------
@@ -394,14 +404,9 @@ class Scene:
         from .drawing import fit_width
 
         attrs, g = self.ds.attrs, self.g
-        head = f"{MODEL_TITLES[attrs['model']]} model"
-        if is_real(attrs.get("dt_s")):
-            head += f", Δt = {attrs['dt_s']:g} s"
-        head += (f";  $R^1$ = {g.R1:g} m, $\\alpha^1$ = {np.degrees(g.alpha1):.3g}°, $\\alpha^{{21}}$ = "
-                 f"{np.degrees(g.alpha21):.3g}°, $h^2$ = {100 * g.h2:.3g} cm")
-        label = attrs.get("case_id") or name  # the case id says more than the file name
-        if label:
-            head += f"  —  {label}"
+        head = (f"{MODEL_TITLES[attrs['model']]} model;  $R^1$ = {g.R1:g} m, $\\alpha^1$ = "
+                f"{np.degrees(g.alpha1):.3g}°, $\\alpha^{{21}}$ = {np.degrees(g.alpha21):.3g}°, $h^2$ = "
+                f"{100 * g.h2:.3g} cm  —  {name}")
         fit_width(self.fig.text(0.5, 0.985, head, ha="center", va="top", fontsize=11), self.fig)
         notes = run_notes(attrs)
         if notes:
@@ -550,7 +555,7 @@ def _limits(ax, points, margin=2.0):
     ax.set_ylabel("Y (cm)", labelpad=1)
 
 
-def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=""):
+def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=None):
     """Draw step n of the history ``ds`` on a figure (cleared first); returns the Scene.
 
     Parameters
@@ -560,7 +565,7 @@ def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=""):
     n : step index in ``ds`` (0: the first stored step).
     exaggeration : magnification of the interpenetration spikes; None: automatic, 0: none.
     frames : steps that fix the drawing limits and zoom windows (default: up to MAX_FRAMES of all).
-    name : text added to the heading (e.g. the file name).
+    name : what the history is of, in the heading; None: its case (``viewer.case_text``).
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -570,7 +575,7 @@ def draw_frame(fig, ds, n, *, exaggeration=None, frames=None, name=""):
     fig.clear()
     if fig.canvas is None or not hasattr(fig.canvas, "copy_from_bbox"):
         FigureCanvasAgg(fig)
-    scene = _scene(ds)(fig, ds, np.union1d(frames, [n]), exaggeration, name)
+    scene = _scene(fig, ds, np.union1d(frames, [n]), exaggeration, name)
     scene.show(n)
     return scene
 
@@ -750,26 +755,44 @@ def animate(path, output, *, start=None, end=None, fps=10, max_frames=MAX_FRAMES
     suffix = check_options(output, start=start, end=end, fps=fps, max_frames=max_frames, exaggeration=exaggeration)
     ds = select(open_result(path), start, end)
     idx, k = frame_steps(ds.sizes["t"], max_frames)
-    _render(ds, idx, output, suffix, fps, exaggeration, Path(path).name)
+    _render(ds, idx, output, suffix, fps, exaggeration)
     return summary(output, ds, idx, k, fps)
 
 
-def _scene(ds):
-    """The scene class of a history: the planar device, or the spatial view of a bidirectional one."""
-    if ds.attrs.get("motion") == "bidirectional":
-        from .plan import Scene as SpatialScene
+def _scene(fig, ds, frames, exaggeration=None, name=None):
+    """The scene of a history: the planar device, or the spatial view of a bidirectional one (``plan.Scene``);
+    its heading says ``name``, by default its case (``viewer.case_text``)."""
+    name = case_text(ds.attrs) if name is None else name
+    if ds.attrs.get("motion") != "bidirectional":
+        return Scene(fig, ds, frames, exaggeration, name)
+    from .plan import Scene as SpatialScene
 
-        return SpatialScene
-    return Scene
+    scene = SpatialScene(fig, ds, frames, exaggeration, name)
+    _legend_above_the_rings(scene.plan)
+    return scene
 
 
-def _render(ds, idx, output, suffix, fps, exaggeration, name):
+def _legend_above_the_rings(ax):
+    """The plan view's legend in one row, in a strip added above the rings (in the upper right corner it covered
+    their top), as high as the legend: the plan, of equal aspect, grows into the room its place leaves above and
+    below it, or shrinks where there is too little."""
+    from .drawing import headroom
+
+    handles, labels = ax.get_legend_handles_labels()
+    legend = ax.legend(handles, labels, loc="upper center", ncols=len(handles), fontsize=7, frameon=False)
+    ax.apply_aspect()
+    strip = ax.bbox.y1 - legend.get_window_extent(ax.figure.canvas.get_renderer()).y0  # pixels
+    room = ax.get_position(original=True).height * ax.figure.bbox.height
+    headroom(ax, frac=strip / min(ax.bbox.height, room - strip))
+
+
+def _render(ds, idx, output, suffix, fps, exaggeration):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=FIGSIZE, dpi=DPI)
     FigureCanvasAgg(fig)
-    blit = _Blitter(_scene(ds)(fig, ds, idx, exaggeration, name), int(idx[0]))
+    blit = _Blitter(_scene(fig, ds, idx, exaggeration), int(idx[0]))
     palette = _palette([blit(int(n)) for n in idx[np.linspace(0, idx.size - 1, min(idx.size, 6)).astype(int)]])
     writer = _writer_classes()[suffix](fps=fps, palette=palette)
     with tempfile.TemporaryDirectory(prefix="dccss-animate-") as tmp:

@@ -1,5 +1,6 @@
 """What the drawing commands (``dccss animate``, ``dccss plot``) share: opening a result history, the
-error that says why a file or an option cannot be drawn, and their exit codes."""
+error that says why a file or an option cannot be drawn, their exit codes, and what a history is of (its
+case, said from the dataset's attributes)."""
 
 from __future__ import annotations
 
@@ -68,6 +69,67 @@ def is_real(value) -> bool:
     """A finite int or float (not a bool)."""
     return (isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
             and math.isfinite(value))
+
+
+#: how the component a history keeps of a two-component excitation is said
+COMPONENT_TEXT = {"x": "its x component alone", "y": "its y component alone", "both": "both components"}
+
+
+def case_text(attrs) -> str:
+    """What a history is of, from its dataset's attributes, for the title of its frames: its ground motion and
+    the case's parameters besides the device; e.g. "record pair synthetic + synthetic_y, scaled by 1.5, both
+    components; structure μ = 0.04, ζ = 0; Δt = 0.01 s"."""
+    return "; ".join([_motion_text(attrs), *_parameter_texts(attrs)])
+
+
+def _motion_text(attrs) -> str:
+    """A history's ground motion: its record or excitation (``_excitation_text``), the factor it is scaled by,
+    the azimuth it is applied along or the angle it is turned by, the component kept and a vertical component."""
+    parts = [_excitation_text(attrs)]
+    scale = math.prod(float(attrs[key]) for key in ("record_scale", "record_1_scale", "excitation_scale")
+                      if key in attrs)
+    if scale != 1.0:
+        parts.append(f"scaled by {scale:.4g}")
+    if is_real(attrs.get("excitation_azimuth_deg")):
+        parts.append(f"along {attrs['excitation_azimuth_deg']:g}°")
+    if attrs.get("record_rotation_deg"):
+        parts.append(f"turned by {attrs['record_rotation_deg']:g}°")
+    if attrs.get("excitation_component") in COMPONENT_TEXT:
+        parts.append(COMPONENT_TEXT[attrs["excitation_component"]])
+    if attrs.get("vertical_form") == "record":
+        parts.append(f"vertical {Path(attrs['record_vertical_source']).stem}")
+    elif attrs.get("vertical_form") == "sine":
+        parts.append(f"vertical sine {attrs['vertical_amplitude_m_per_s2']:.3g} m/s², "
+                     f"ω = {attrs['vertical_omega_rad_per_s']:.4g} rad/s")
+    return ", ".join(parts)
+
+
+def _excitation_text(attrs) -> str:
+    """'sine X_g,max = 27 cm, ω = 30 rad/s', 'record RSN6_ELC180', 'record pair RSN6_ELC180 + RSN6_ELC270' (the
+    files' stems), 'table motion.csv'."""
+    kind = attrs.get("excitation")
+    if kind == "sine":
+        return f"sine $X_{{g,max}}$ = {100 * attrs['amplitude_m']:.4g} cm, ω = {attrs['omega_rad_per_s']:.4g} rad/s"
+    if kind == "record":
+        stems = [Path(attrs[key]).stem for key in ("record_source", "record_1_source", "record_2_source")
+                 if key in attrs]
+        return f"record{' pair' if len(stems) == 2 else ''} {' + '.join(stems)}"
+    return f"{kind or 'ground motion'} {Path(str(attrs.get('table_source', ''))).name}".strip()
+
+
+def _parameter_texts(attrs) -> list:
+    """The case's parameters besides its device and ground motion: a structure's friction (on the device, or on
+    each surface as given) and damping, a start angle other than 0, the time step."""
+    texts = []
+    if "structure_friction" in attrs:
+        friction = (f"$μ_s$ = {attrs['structure_friction_given']:g} on each surface"
+                    if attrs.get("structure_friction_on") == "surfaces" else f"μ = {attrs['structure_friction']:g}")
+        texts.append(f"structure {friction}, ζ = {attrs['structure_damping']:g}")
+    if attrs.get("theta2_0_deg"):
+        texts.append(f"$\\theta^2(t_0)$ = {attrs['theta2_0_deg']:g}°")
+    if is_real(attrs.get("dt_s")):
+        texts.append(f"Δt = {attrs['dt_s']:g} s")
+    return texts
 
 
 #: the events of a history drawn on its time traces: (attribute, colour, label)

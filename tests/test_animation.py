@@ -158,6 +158,52 @@ def test_frames_of_failed_and_stopped_runs_say_so(histories, name, words):
     assert all(word in text for word in words)
 
 
+# --- titles ----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("attrs, text", [
+    ({"excitation": "sine", "amplitude_m": 0.1908, "omega_rad_per_s": 30.0, "dt_s": 0.001},
+     "sine $X_{g,max}$ = 19.08 cm, ω = 30 rad/s; Δt = 0.001 s"),
+    ({"excitation": "sine", "amplitude_m": 0.27, "omega_rad_per_s": 30.0, "excitation_scale": 0.5,
+      "excitation_azimuth_deg": 45.0, "theta2_0_deg": 2.0},
+     "sine $X_{g,max}$ = 27 cm, ω = 30 rad/s, scaled by 0.5, along 45°; $\\theta^2(t_0)$ = 2°"),
+    ({"excitation": "record", "record_source": "RSN6_ELC180.AT2", "record_scale": 2.0, "dt_s": 0.005},
+     "record RSN6_ELC180, scaled by 2; Δt = 0.005 s"),
+    ({"excitation": "record", "record_1_source": "RSN6_ELC180.AT2", "record_2_source": "RSN6_ELC270.AT2",
+      "record_1_scale": 1.5, "record_2_scale": 1.5, "record_rotation_deg": 30.0, "excitation_component": "both",
+      "vertical_form": "record", "record_vertical_source": "RSN6_ELCUP.AT2", "structure_friction": 0.04,
+      "structure_damping": 0.0, "structure_friction_on": "device", "dt_s": 0.01},
+     "record pair RSN6_ELC180 + RSN6_ELC270, scaled by 1.5, turned by 30°, both components, vertical RSN6_ELCUP; "
+     "structure μ = 0.04, ζ = 0; Δt = 0.01 s"),
+    ({"excitation": "sine", "amplitude_m": 0.1, "omega_rad_per_s": 5.0, "vertical_form": "sine",
+      "vertical_amplitude_m_per_s2": 2.5, "vertical_omega_rad_per_s": 10.0},
+     "sine $X_{g,max}$ = 10 cm, ω = 5 rad/s, vertical sine 2.5 m/s², ω = 10 rad/s"),
+    ({"excitation": "table", "table_source": "tables/motion.csv", "excitation_component": "y",
+      "structure_friction": 0.05, "structure_friction_given": 0.03, "structure_friction_on": "surfaces",
+      "structure_damping": 0.02}, "table motion.csv, its y component alone; structure $μ_s$ = 0.03 on each surface, "
+                                  "ζ = 0.02"),
+])
+def test_a_history_is_said_by_its_motion_and_parameters(attrs, text):
+    from dccss.viewer import case_text
+
+    assert case_text(attrs) == text
+
+
+@pytest.mark.slow
+def test_an_animation_is_titled_by_its_motion_and_parameters_not_its_file(histories, tmp_path, monkeypatch):
+    """The heading named the history's file ("compliant.nc", a study's "compliant_1.nc") where the history
+    has no case id: it says the ground motion and the case's parameters, read from the dataset."""
+    scenes, start = [], animation._Blitter.__init__
+
+    def spy(blit, scene, first):
+        scenes.append(scene)
+        start(blit, scene, first)
+
+    monkeypatch.setattr(animation._Blitter, "__init__", spy)
+    animate(histories["compliant"], tmp_path / "compliant.gif", max_frames=2)
+    (scene,) = scenes
+    (head,) = [text for text in _texts(scene.fig) if text.startswith("Compliant Sliding model")]
+    assert head.endswith("  —  sine $X_{g,max}$ = 27 cm, ω = 30 rad/s; Δt = 0.01 s") and ".nc" not in head
+
+
 # --- subsampling and time range ------------------------------------------------------------------
 @pytest.mark.parametrize("n, budget", [(1001, 200), (1000, 200), (21, 200), (21, 5), (21, 2), (200, 200), (201, 200),
                                        (10001, 37)])

@@ -161,6 +161,31 @@ def test_a_spatial_frame_draws_its_events_and_says_them_below_its_labels():
     assert outside_texts(fig) == []
 
 
+def test_a_spatial_frame_is_titled_by_its_ground_motion_and_parameters(runs):
+    """A bidirectional history's frame says its ground motion and the case's parameters in its title (an
+    animation said its file's name)."""
+    fig = Figure()
+    draw_frame(fig, runs["structure"], -1)
+    assert fig.get_suptitle().endswith(" - sine $X_{g,max}$ = 15 cm, ω = 6.283 rad/s, along 137°; structure "
+                                       "μ = 0.02, ζ = 0.05; Δt = 0.05 s")
+
+
+def test_the_plan_views_legend_lies_above_the_rings_at_every_step(runs):
+    """In the upper right corner of the plan view, the legend covered the top of the rings."""
+    ds = runs["structure"]
+    fig = Figure()
+    scene = draw_frame(fig, ds, -1)
+    fig.canvas.draw()
+    legend = scene.plan.get_legend().get_window_extent(fig.canvas.get_renderer())
+    assert scene.plan.bbox.y0 < legend.y0 and legend.y1 <= scene.plan.bbox.y1
+    for n in range(ds.sizes["t"]):
+        scene.show(n)
+        tops = [scene.plan.transData.transform((ring.center[0], ring.center[1] + ring.radius))[1]
+                for ring in scene.rings]
+        assert max(tops) < legend.y0, n
+    assert outside_texts(fig) == []
+
+
 # --- 3. dccss plot: legends off the data, the caption naming what is drawn -----------------------------------
 def _caption(fig):
     (caption,) = [t for t in fig.texts if t.get_style() == "italic"]

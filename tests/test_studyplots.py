@@ -11,7 +11,8 @@ from dccss.studies import plots as studyplots
 
 MODELS = ("compliant", "stick_slip")
 AXIS_UNITS = {"alpha21": "degree", "h2": "m", "amplitude": "m", "omega": "rad s-1", "scale": "1",
-              "theta2_0": "degree", "dt": "s"}
+              "theta2_0": "degree", "dt": "s", "friction": "1"}
+CATEGORICAL = ("prototype", "record", "component")
 
 
 # --- synthetic datasets ----------------------------------------------------------------------------
@@ -32,8 +33,9 @@ def pair(**attrs):
     return {"compliant": history("compliant", **attrs), "stick_slip": history("stick_slip", gain=1.05, **attrs)}
 
 
-def study(axes, capacity=None, failed=None, models=MODELS):
-    """A combined study dataset over ``axes`` ({name: values}); capacity/failed: {model: bool grid}."""
+def study(axes, capacity=None, failed=None, models=MODELS, structure=False):
+    """A combined study dataset over ``axes`` ({name: values}); capacity/failed: {model: bool grid}; with a
+    ``structure``, its summaries, which have a value where the pad failed."""
     names = list(axes)
     shape = tuple(len(v) for v in axes.values())
     ramp = np.indices(shape).sum(axis=0) if shape else np.zeros(())
@@ -51,14 +53,24 @@ def study(axes, capacity=None, failed=None, models=MODELS):
                   "rise_stick_max": 0.05 * base if stick else np.full(shape, np.nan),
                   **{f"I_{c}_max": 1e-3 * base * (1 + 0.01 * j) for j, c in enumerate("ABCD")}}
         values = {name: np.where(bad, np.nan, v) for name, v in values.items()}
+        if structure:
+            values |= {"stroke_max_abs": 0.1 * base, "shear_ratio_max_abs": 0.05 * base, "stroke_end": 0.01 * base}
         values["capacity_exceeded"] = cap.astype(np.int8)
         values["failed"] = bad.astype(np.int8)
         data[model] = xr.Dataset({name: (names, v) for name, v in values.items()})
-    coords = {name: xr.Variable((name,), np.asarray(v, dtype=object) if name == "prototype" else np.asarray(v, float),
-                                {} if name == "prototype" else {"units": AXIS_UNITS[name]}) for name, v in axes.items()}
+    coords = {name: xr.Variable((name,), np.asarray(v, dtype=object) if name in CATEGORICAL else np.asarray(v, float),
+                                {} if name in CATEGORICAL else {"units": AXIS_UNITS[name]}) for name, v in axes.items()}
     ds = xr.concat([data[m] for m in models], dim="model").assign_coords(model=list(models), **coords)
     ds.attrs = {"study": "synthetic", "sweep_axes": " ".join(names)}
     return ds
+
+
+def suite(records, failed=None, **axes):
+    """A suite's combined dataset: ``records`` records on a structure over ``axes``, with the suite's statistics."""
+    from dccss.studies.combine import statistics
+
+    ds = study({"record": [f"RSN{100 + k}_SUITE" for k in range(records)], **axes}, failed=failed, structure=True)
+    return ds.merge(statistics(ds))
 
 
 # --- helpers reading the figures --------------------------------------------------------------------
@@ -322,7 +334,7 @@ def test_a_bidirectional_study_labels_the_rotation_as_the_tilt():
     ds = study({"alpha21": [5.0, 10.0], "h2": [0.1, 0.15]})
     ds.attrs["excitation_components"] = 2
     titles = [ax.get_title() for ax in studyplots.maps(ds, {}, "caption").axes]
-    assert "Stick-Slip: max tilt of the pad" in titles and not any("θ²" in t for t in titles)
+    assert "Stick-Slip:\nmax tilt of the pad" in titles and not any("θ²" in t for t in titles)
 
 
 def test_an_axis_of_one_value_is_a_note():
@@ -330,6 +342,67 @@ def test_an_axis_of_one_value_is_a_note():
     fig = studyplots.maps(ds, {}, "caption")
     assert meshes(fig) == []
     assert "$h^{2}$ = 0.15 m" in figure_title(fig) and "first of" not in figure_title(fig)
+
+
+@pytest.mark.parametrize("axes", [{"scale": [0.5, 1.0]}, {"scale": [0.5, 1.0], "friction": [0.02, 0.04]}],
+                         ids=["curves", "maps"])
+def test_a_suites_undrawn_component_axis_is_said_at_the_value_drawn(axes):
+    """A suite of pairs swept over their components draws one of them, the first: the title says which."""
+    title = figure_title(studyplots.maps(suite(3, **axes, component=["x", "y", "both"]), {}, "caption"))
+    assert "component of $X_g$ = x (first of 3 values, the others not drawn)" in title
+
+
+STRUCTURE_LABELS = ("max |stroke u| of the structure", "max |F/W| of the device")
+SUMMARY_LABELS = ("max |θ²|", "max sticking rotation", "max rise of RB3", "max interpenetration (corners)",
+                  *STRUCTURE_LABELS)
+
+
+@pytest.mark.parametrize("records", [6, 12])
+@pytest.mark.parametrize("axes", [{"scale": [0.5, 1.0, 2.0]}, {"scale": [0.5, 1.0, 2.0], "friction": [0.02, 0.04]}],
+                         ids=["curves", "maps"])
+def test_a_suites_panels_go_on_rows_of_a_figure_at_most_16_inches_wide(records, axes):
+    """A suite's six summaries (the pad's and its structure's) were drawn in one row of panels, 24.6 inches of
+    curves and 25.8 of maps (3690 pixels for six records), too wide to read: they go on rows, at most 16
+    inches wide, every summary drawn."""
+    fig = studyplots.maps(suite(records, **axes), {}, "caption")
+    panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_title()]
+    assert fig.get_figwidth() <= 16.0
+    assert all(any(label in ax.get_title() for ax in panels) for label in SUMMARY_LABELS)
+    assert len(panels) == (6 if "friction" not in axes else 4 * 6 - 2)  # maps: no sticking rotation of compliant
+    assert len({round(ax.get_position().y0, 3) for ax in panels}) > (1 if "friction" not in axes else 4)
+
+
+@pytest.mark.parametrize("n", range(1, 13))
+def test_any_number_of_panels_is_laid_out_at_most_16_inches_wide_on_as_few_rows_as_fit(n):
+    for inches, rows, margin in ((studyplots.LINE_INCHES, 1, 0.0), (studyplots.MAP_INCHES, 4, studyplots.MAP_MARGIN)):
+        fig, columns = studyplots._grid(n, inches, rows, margin)
+        assert len(columns) == n and all(len(column) == rows for column in columns)
+        assert len([ax for ax in fig.axes if ax.get_visible()]) == n * rows
+        assert fig.get_figwidth() <= 16.0
+        blocks = len({ax.get_subplotspec().rowspan.start // rows for column in columns for ax in column})
+        assert blocks == 1 or -(-n // (blocks - 1)) * inches[0] + margin > 16.0  # one block fewer: too wide
+
+
+@pytest.mark.parametrize("records", [0, 6], ids=["one record", "a suite"])
+def test_where_the_pad_failed_the_structures_summaries_are_drawn_not_hatched(records):
+    """Where every record's run failed, the grey hatch hid the structure's stroke and F/W too, which do not
+    depend on the pad and have a value: only the summaries without one are hatched."""
+    xs, ys = [0.5, 1.0, 2.0], [0.02, 0.04]
+    bad = np.zeros((3, 2), bool)
+    bad[2, 1] = True
+    if records:
+        ds = suite(records, failed={"stick_slip": np.broadcast_to(bad, (records, 3, 2))}, scale=xs, friction=ys)
+    else:
+        ds = study({"scale": xs, "friction": ys}, failed={"stick_slip": bad}, structure=True)
+    fig = studyplots.maps(ds, {}, "caption")
+    maps = [ax for ax in fig.axes if ax.get_title().startswith("Stick-Slip")]
+    assert len(maps) == 6 * (2 if records else 1)
+    for ax in maps:
+        (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+        shown = ~np.ma.masked_invalid(mesh.get_array()).mask.reshape(len(ys), len(xs)).T
+        structure = ax.get_title().split("\n")[-1] in STRUCTURE_LABELS
+        assert hatched_cells(ax, "failed", xs, ys) == (set() if structure else {(2, 1)})
+        assert shown[2, 1] == structure and shown.sum() == 5 + structure
 
 
 # --- files -----------------------------------------------------------------------------------------------

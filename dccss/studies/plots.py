@@ -4,10 +4,13 @@
 
 * two or more numeric axes: maps over the first two, one row per model (and per category of a further
   categorical axis; a suite's mean and largest over its records in place of a row per record), the
-  cells where the pad reached a retaining ring or the solver failed hatched; further numeric axes at
-  their first value;
+  cells where the pad reached a retaining ring hatched, and those where the solver failed where the
+  summary has no value; further numeric axes at their first value;
 * one numeric axis: curves with markers, one per model (and per category of ``prototype``);
 * a categorical axis only (``prototype``): one mark per model and category at integer positions.
+
+Their panels, a map per model and summary or a panel of curves per summary, go on as many rows as keep
+the figure at most MAX_INCHES wide.
 
 ``histories`` draws, for each history point, the ground displacement, θ², the rise of RB3 and
 the largest corner interpenetration against time, one column per point, with the times at which
@@ -49,6 +52,10 @@ LOG_AXES = ("dt",)
 MAX_VALUE_TICKS = 8  # a swept axis with at most this many values is ticked at its values
 POINTS_PER_ROW = 3  # history points side by side; more go to a block below
 COLUMN_INCHES = 3.9  # width of a history point's column
+MAX_INCHES = 16.0  # a summaries figure's panels go on as many rows as keep it this wide at most
+LINE_INCHES = (4.0, 3.4)  # width and height of a panel of curves
+MAP_INCHES = (4.4, 3.2)  # width (with its colour bar: its title's first line fits) and height of a map
+MAP_MARGIN = 0.6  # the maps figure's margin beside its maps (inches)
 FAILURE_SPACING = 10.0  # points between the failure marks of different curves at one x
 
 #: (summary variable, label, factor to plot units, plot unit)
@@ -262,13 +269,9 @@ def histories(points: list, caption: str) -> Figure:
     fig, axs = new_figure((max(7.5, 1.2 + COLUMN_INCHES * ncols), 1.4 + 8.6 * blocks * rows / len(HISTORY_ROWS)),
                           rows * blocks, ncols)
     events = set()
-    for k, (label, runs) in enumerate(points):
-        block, c = divmod(k, POINTS_PER_ROW)
-        col = axs[rows * block:rows * (block + 1), c]
-        _share_time(col, ylabels=c == 0, spatial=any(_bidirectional(ds) for ds in runs.values()))
+    for k, ((label, runs), col) in enumerate(zip(points, _panels(axs, len(points), rows))):
+        _share_time(col, ylabels=k % POINTS_PER_ROW == 0, spatial=any(_bidirectional(ds) for ds in runs.values()))
         events |= _history_column(col, f"({_letter(k)}) {label}", runs, models)
-    for ax in _unused(axs, len(points), rows):
-        ax.set_visible(False)
     two = any(_bidirectional(ds) for _, runs in points for ds in runs.values())
     lines = [Line2D([], [], color="k", lw=1.2, label="$X_g$, imposed ground motion")]
     if two:
@@ -299,11 +302,24 @@ def _share_time(col, ylabels, spatial=False):
             col[-1].set_ylabel("device force F/W (-)")
 
 
-def _unused(axs, n, rows):
-    """The axes of the empty places in the last block of columns."""
+def _panels(axs, n, rows):
+    """The columns of ``rows`` axes of ``n`` panels laid out in blocks of ``rows`` rows of ``axs``, one block
+    below the other; the places the last block leaves empty are hidden."""
     ncols = axs.shape[1]
-    return [ax for k in range(n, axs.shape[0] // rows * ncols)
-            for ax in axs[rows * (k // ncols):rows * (k // ncols + 1), k % ncols]]
+    columns = [axs[rows * (k // ncols):rows * (k // ncols + 1), k % ncols] for k in range(axs.shape[0] // rows * ncols)]
+    for ax in (ax for column in columns[n:] for ax in column):
+        ax.set_visible(False)
+    return columns[:n]
+
+
+def _grid(n, inches, rows=1, margin=0.0):
+    """A figure of ``n`` panels, each a column of ``rows`` axes of ``inches`` (width, height), beside ``margin``
+    inches: in as few blocks, one below the other, as keep it at most MAX_INCHES wide, the panels shared
+    evenly between them, with room for a title and legend above; the figure and the panels' columns."""
+    blocks = -(-n // max(1, int((MAX_INCHES - margin) // inches[0])))
+    ncols = -(-n // blocks)
+    fig, axs = new_figure((inches[0] * ncols + margin, inches[1] * rows * blocks + 1.6), rows * blocks, ncols)
+    return fig, _panels(axs, n, rows)
 
 
 def _letter(k):
@@ -460,11 +476,12 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     matplotlib.figure.Figure
         Two or more numeric axes of more than one value: maps over the first two (one row per
         model), with the cells where the pad reached a retaining ring hatched in red and the
-        failed cells hatched in grey; one numeric axis: curves with markers (one per model, and
-        per category of a categorical axis), capacity points boxed in red, failed points marked
-        ✕ on the bottom edge; a categorical axis only: marks per category at integer positions.
-        Maps give a further categorical axis (a prototype) rows of its own; any other further axis
-        is shown at its first value, as the title says.
+        failed cells without a value hatched in grey; one numeric axis: curves with markers (one
+        per model, and per category of a categorical axis), capacity points boxed in red, failed
+        points marked ✕ on the bottom edge; a categorical axis only: marks per category at integer
+        positions. Maps give a further categorical axis (a prototype) rows of its own; any other
+        further axis is shown at its first value, as the title says. The panels go on as many rows
+        as keep the figure at most MAX_INCHES wide.
     """
     ds = ds.assign(interpenetration_max=ds[[f"I_{c}_max" for c in "ABCD"]].to_array().max("variable"))
     kind, drawn, fixed = _plan(ds)
@@ -484,15 +501,15 @@ def maps(ds, marks: dict, caption: str) -> Figure:
                  if name in ds and any(_defined(ds, name, m) for m in models)]
     if kind == "map":
         rows = [(m, {group: str(v)} if group else {}) for m in models for v in (ds[group].values if group else [0])]
-        fig, axs = new_figure((4.2 * len(variables) + 0.6, 3.5 * len(rows) + 1.6), len(rows), len(variables))
-        legend = _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group)
+        fig, columns = _grid(len(variables), MAP_INCHES, len(rows), MAP_MARGIN)
+        legend = _draw_maps(fig, columns, ds, drawn, marks, variables, rows, models, group)
         what = f"maps over {_symbol(drawn[0])} and {_symbol(drawn[1])}" + (
             f": statistics over its {records} records" if group == "statistic" else
             f" per {_symbol(group)}" if group else "")
     else:
-        fig, axs = new_figure((4.1 * len(variables), 5.0), 1, len(variables))
+        fig, columns = _grid(len(variables), LINE_INCHES)
         draw = _draw_lines if kind == "lines" else _draw_categories
-        legend = draw(axs[0], ds, drawn, marks, variables, models)
+        legend = draw([column[0] for column in columns], ds, drawn, marks, variables, models)
         what = f"summaries against {_symbol(drawn[0])}" + (f" per {_symbol(drawn[1])}" if len(drawn) > 1 else "")
     title = f"Study {ds.attrs.get('study', '')}: {what}"
     if fixed:
@@ -605,26 +622,27 @@ def _undefined(ax, label, model):
             transform=ax.transAxes, color="0.4")
 
 
-def _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group=None):
-    """One row per model (and category of ``group``: ``rows`` of (model, {group: category})), one column
-    per variable (a colour bar per column); the legend's groups of handles."""
+def _draw_maps(fig, columns, ds, drawn, marks, variables, rows, models, group=None):
+    """A column of axes per variable (``columns``), with its colour bar: a map per model (and category of
+    ``group``: ``rows`` of (model, {group: category})); the legend's groups of handles."""
     x, y = drawn
     logs = [name in LOG_AXES for name in drawn]
     xe, ye = (_edges(_plot_values(ds, n), log) for n, log in zip(drawn, logs))
-    for c, (name, label, factor, unit) in enumerate(variables):
+    for column, (name, label, factor, unit) in zip(columns, variables):
         values = factor * ds[name].values
         finite = values[np.isfinite(values)]
         vmin, vmax = (finite.min(), finite.max()) if finite.size else (0.0, 1.0)
         mesh = None
-        for r, (model, where) in enumerate(rows):
-            ax, data = axs[r, c], factor * ds[name].sel(model=model, **where).transpose(x, y).values
+        for ax, (model, where) in zip(column, rows):
+            data = factor * ds[name].sel(model=model, **where).transpose(x, y).values
             if not _defined(ds, name, model):
                 _undefined(ax, label, model)
                 continue
             mesh = ax.pcolormesh(xe, ye, data.T, cmap="viridis", vmin=vmin, vmax=vmax)
             capacity, failed = _flags(ds, model, x, y, where=where)
             _hatch(ax, capacity, xe, ye, "capacity_exceeded", CAPACITY_COLOUR, "///", "none")
-            _hatch(ax, failed, xe, ye, "failed", FAILED_COLOUR, "xx", "0.85")
+            missing = failed & ~np.isfinite(data)  # a structure's summaries have a value where the pad failed
+            _hatch(ax, missing, xe, ye, "failed", FAILED_COLOUR, "xx", "0.85")
             _map_marks(ax, ds, drawn, marks)
             _scale(ax, "x", x, _plot_values(ds, x))
             _scale(ax, "y", y, _plot_values(ds, y))
@@ -632,11 +650,10 @@ def _draw_maps(fig, axs, ds, drawn, marks, variables, rows, models, group=None):
             ax.set_ylim(ye[0], ye[-1])
             ax.set_xlabel(_axis_label(ds, x))
             ax.set_ylabel(_axis_label(ds, y))
-            # a category's row names it too: on two lines, so that the title stays within its panel
-            ax.set_title(f"{_title(model)}{''.join(f', {v}' for v in where.values())}:{chr(10) if where else ' '}"
-                         f"{label}", fontsize=10)
+            # the model and the row's category, then the summary: the title stays within its map
+            ax.set_title(f"{', '.join([_title(model), *where.values()])}:\n{label}", fontsize=10)
         if mesh is not None:
-            fig.colorbar(mesh, ax=list(axs[:, c]), label=f"{label} ({unit})", shrink=0.9)
+            fig.colorbar(mesh, ax=list(column), label=f"{label} ({unit})", shrink=0.9)
     cap_label, fail_label = _flag_labels(ds, models, [*drawn, group] if group else drawn)
     flags = [Patch(fc="none", ec=CAPACITY_COLOUR, hatch="///", label=cap_label),
              Patch(fc="0.85", ec=FAILED_COLOUR, hatch="xx", label=fail_label)]
