@@ -529,11 +529,15 @@ def structure_from(value, key="structure") -> Structure | None:
     check_keys(value, key, tuple(STRUCTURE["required"]), STRUCTURE_OPTIONAL)
     value = {**STRUCTURE_OPTIONAL, **value}
     problems = Problems(value)
-    friction, damping = (problems.check(k, number, value[k], f"{key}.{k}") for k in ("friction", "damping"))
+    friction = value["friction"]
+    if not isinstance(friction, (dict, list)):
+        friction = problems.check("friction", number, friction, f"{key}.friction")
+    damping = problems.check("damping", number, value["damping"], f"{key}.damping")
+    factor = problems.check("property", number, value["property"], f"{key}.property")
     friction_on = problems.check("friction_on", choice, value["friction_on"], f"{key}.friction_on", FRICTION_ON)
     problems.raise_if_any()
     try:
-        return Structure(friction, damping, friction_on=friction_on)
+        return Structure(friction, damping, friction_on=friction_on, factor=factor)
     except StructureError as err:
         raise CaseError(*(m.replace("structure.", f"{key}.", 1) for m in err.messages)) from None
 

@@ -252,6 +252,19 @@ def structure_variables(response, components, steps) -> dict:
     out["structure_sticking"] = variable(
         t, response.sticking[:steps].astype(np.int8), "1", "the superstructure sticks on the device (du/dt = 0)",
         flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="sliding sticking")
+    if response.friction is not None:
+        out["friction_coefficient"] = variable(t, response.friction[:steps], "1", "the device's friction coefficient "
+                                               "mu(t) of its law (at zero speed while the superstructure sticks)")
+        speed = np.linalg.norm(response.velocity[:steps], axis=1)
+        out["sliding_speed"] = variable(t, speed, "m s-1", "the stroke's speed |du/dt| (surface j slides at R^j / L "
+                                                           "times it)")
+    if response.temperature is not None:
+        surfaces = response.temperature.shape[1]
+        for i in range(surfaces):
+            name = "surface_temperature" if surfaces == 1 else f"surface_temperature_{'13'[i]}"
+            where = "" if surfaces == 1 else f" of RB{'13'[i]}"
+            out[name] = variable(t, response.temperature[:steps, i], "degC",
+                                 f"the temperature at the centre of the sliding plate{where}")
     if response.normal is not None:
         normal = response.normal[:steps]
         out["vertical_acceleration"] = variable(t, (normal - 1.0) * G, "m s-2",

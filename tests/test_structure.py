@@ -211,7 +211,8 @@ def _slide_alone(y0, end, load, stop):
     from dccss.mechanics import structure
 
     y, K = list(y0), [0.0] * ((structure.STAGES + 1) * structure.SIZE)
-    ended, when, _ = structure._integrate(y, end, 0.0, load, False, stop, structure.RTOL, structure.ATOL,
+    ended, when, _ = structure._integrate(y, end, 0.0, load, structure.UNIT_LAW.tolist(), False, stop,
+                                          structure.RTOL, structure.ATOL,
                                           *structure._tableau(False), K, [0.0] * 4, [0.0] * 4)
     return ended, when, np.array(y)
 
@@ -235,7 +236,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
 
     from dccss.mechanics.structure import ATOL, NONE, REST_SPEED, RTOL, STOP
 
-    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0)
+    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0)
     y0 = [0.01, -0.02, 0.3, 0.1]
     ended, when, y = _slide_alone(y0, 0.5, load, stop=False)
     ours = solve_ivp(_circular(load), (0.0, 0.5), y0, method="DOP853", rtol=RTOL, atol=ATOL)
@@ -244,7 +245,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
     turned = math.degrees(math.atan2(y[3], y[2]) - math.atan2(y0[3], y0[2]))
     assert abs(turned) > 30.0  # a curved path, not a line
 
-    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0)
+    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0)
     y0 = [0.05, -0.03, 0.2, 0.1]
 
     def rest(t, y):
@@ -412,11 +413,11 @@ CASE = {"prototype": "DFP1", "excitation": {"kind": "record", "file": "synthetic
     ({"friction": 1.2}, r"structure\.friction: 1\.2 is outside"),
     ({"friction": 0.05, "damping": -0.1}, r"structure\.damping: -0\.1 is outside 0 <= ζ < 1"),
     ({"friction": 0.05, "mass": 1.0},
-     r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction', 'friction_on'\]"),
+     r"structure: unknown key\(s\) \['mass'\]; allowed: \['damping', 'friction', 'friction_on', 'property'\]"),
     ({"damping": 0.05}, r"structure: missing key\(s\) \['friction'\]"),
     ({"friction": 0.05, "friction_on": "pad"}, r"structure\.friction_on: must be one of \['device', 'surfaces'\]"),
-    ({"friction": 0.95, "friction_on": "surfaces"}, r"structure\.friction: 0\.95 on each surface is a device friction "
-                                                    r"1\.044 = μs \(R1 \+ R3\) / L, outside 0 <= μ < 1"),
+    ({"friction": 0.95, "friction_on": "surfaces"}, r"structure\.friction: 0\.95 is a device friction "
+                                                    r"1\.044 = \(μ1 R1 \+ μ3 R3\) / L times λ, outside 0 <= μ < 1"),
     (0.05, r"structure: expected a mapping"),
 ])
 def test_a_case_file_refuses_a_bad_structure_naming_the_key(structure, message):

@@ -59,13 +59,15 @@ displacement table's piecewise-constant acceleration).
 from __future__ import annotations
 
 import functools
+import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 
 from . import scalar
+from .friction import COULOMB, FACTOR, LAWS, ROW, T0, WEIGHT, FrictionError, device_mu, row, surface_mu
 
 G = 9.80665  # standard gravity (m/s²)
 #: a stop in two components: |u̇| (m/s) below which the structure is at rest
@@ -91,52 +93,117 @@ FRICTION_ON = ("device", "surfaces")
 
 @dataclass(frozen=True)
 class Structure:
-    """A rigid superstructure on the device: the friction coefficient (``friction``, 0 <= μ < 1; 0 a
-    frictionless pendulum) of the
-    device (``friction_on="device"``: the force at zero stroke is μ W) or of each sliding surface
-    (``"surfaces"``, see :meth:`device_friction`), and the viscous damping ratio ζ (``damping``,
-    0 <= ζ < 1, of the pendulum's frequency)."""
+    """A rigid superstructure on the device: its friction (``friction``) on the device
+    (``friction_on="device"``: the force at zero stroke is μ W) or on each sliding surface
+    (``"surfaces"``, see :meth:`device_friction`), the viscous damping ratio ζ (``damping``, 0 <= ζ < 1,
+    of the pendulum's frequency) and the property modification factor λ (``factor``, > 0) that
+    multiplies every friction coefficient (a design code's bound).
 
-    friction: float
+    ``friction`` is a number μ (0 <= μ < 1; 0 a frictionless pendulum: Coulomb friction), a law
+    ``{law: velocity, slow: ..., fast: ..., rate: ...}`` (``dccss.mechanics.friction.LAWS``), or with
+    ``friction_on="surfaces"`` one number or law for both surfaces or a list of two, RB1's and RB3's."""
+
+    friction: object
     damping: float = 0.0
     friction_on: str = "device"
+    factor: float = 1.0
+    laws: list = field(init=False, repr=False, compare=False)  # [(Law, values)]: the device's, or RB1's and RB3's
 
     def __post_init__(self):
         problems = []
-        for key, value in (("friction", self.friction), ("damping", self.damping)):
+        if self.friction_on not in FRICTION_ON:
+            problems.append(f"structure.friction_on: must be one of {list(FRICTION_ON)}, got {self.friction_on!r}")
+        try:
+            object.__setattr__(self, "laws", _laws(self.friction, self.friction_on == "surfaces"))
+        except StructureError as err:
+            problems += err.messages
+        for key, value, allowed, ok in (("damping", self.damping, "0 <= ζ < 1", lambda x: 0.0 <= x < 1.0),
+                                        ("property", self.factor, "λ > 0", lambda x: x > 0.0)):
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
                 problems.append(f"structure.{key}: expected a number, got {type(value).__name__} {value!r}")
                 continue
-            value = float(value)
-            if not (math.isfinite(value) and 0.0 <= value < 1.0):
-                allowed = "0 <= ζ < 1" if key == "damping" else "0 <= μ < 1"
-                problems.append(f"structure.{key}: {value!r} is outside {allowed}")
-            object.__setattr__(self, key, value)
-        if self.friction_on not in FRICTION_ON:
-            problems.append(f"structure.friction_on: must be one of {list(FRICTION_ON)}, got {self.friction_on!r}")
+            if not (math.isfinite(float(value)) and ok(float(value))):
+                problems.append(f"structure.{key}: {float(value)!r} is outside {allowed}")
+            object.__setattr__(self, "factor" if key == "property" else key, float(value))
         if problems:
             raise StructureError(*problems)
+        if isinstance(self.friction, (int, float, np.integer, np.floating)):
+            object.__setattr__(self, "friction", float(self.friction))
+
+    @property
+    def coulomb(self) -> bool:
+        """Whether the friction is Coulomb's, a constant μ (numbers, or the coulomb law)."""
+        return all(law.name == "coulomb" for law, _ in self.laws)
 
     def device_friction(self, geometry) -> float:
-        """The device's friction coefficient μ on ``geometry`` (its L, R1, R3).
+        """The device's friction coefficient μ on ``geometry`` (its L, R1, R3), times λ: Coulomb's, or a
+        law's breakaway value (at zero speed, N = W and the plates' starting temperature).
 
-        With ``friction_on="surfaces"``, ``friction`` is the coefficient μs of each sliding surface and
-        μ = μs (R¹ + R³) / L: a rigid pad that turns by dθ about both sphere centres slides R¹ dθ on
+        With ``friction_on="surfaces"``, ``friction`` is each sliding surface's coefficient and
+        μ = (μ1 R¹ + μ3 R³) / L: a rigid pad that turns by dθ about both sphere centres slides R¹ dθ on
         RB1 and R³ dθ on RB3 under the normal force W (to first order in the tilt), so friction
-        does the work μs W (R¹ + R³) dθ while the stroke grows by L dθ."""
-        if self.friction_on == "device":
-            return self.friction
-        mu = self.friction * float(geometry.R1 + geometry.R3) / float(geometry.L)
+        does the work W (μ1 R¹ + μ3 R³) dθ while the stroke grows by L dθ."""
+        if not self.coulomb:
+            mu = float(sum(r[WEIGHT] * r[FACTOR] * surface_mu(r, 0.0, 1.0, r[T0]) for r in self.rows(geometry)))
+        elif self.friction_on == "device":
+            mu = self.laws[0][1]["mu"] * self.factor
+        else:
+            mu1, mu3 = (values["mu"] for _, values in self.laws)
+            R1, R3, L = float(geometry.R1), float(geometry.R3), float(geometry.L)
+            mu = (mu1 * float(geometry.R1 + geometry.R3) / L if mu1 == mu3 else (mu1 * R1 + mu3 * R3) / L) * self.factor
         if not mu < 1.0:
-            raise StructureError(f"structure.friction: {self.friction!r} on each surface is a device friction "
-                                 f"{mu:.4g} = μs (R1 + R3) / L, outside 0 <= μ < 1")
+            raise StructureError(f"structure.friction: {self.friction!r} is a device friction {mu:.4g} = (μ1 R1 + "
+                                 f"μ3 R3) / L times λ, outside 0 <= μ < 1")
         return mu
+
+    def rows(self, geometry) -> np.ndarray:
+        """The kernel's rows of the friction laws on ``geometry``: one for the device, or RB1's and RB3's
+        surfaces weighted by R^j / L (their sliding speed R^j / L times the stroke's)."""
+        if self.friction_on == "device":
+            return np.array([row(law, values, factor=self.factor) for law, values in self.laws])
+        ratios = [float(geometry.R1) / float(geometry.L), float(geometry.R3) / float(geometry.L)]
+        return np.array([row(law, values, weight=r, ratio=r, factor=self.factor)
+                         for (law, values), r in zip(self.laws, ratios)])
 
     def attrs(self, geometry) -> dict:
         """netCDF attributes of the structure on ``geometry`` (a device of pendulum length L)."""
-        return {"structure_friction": self.device_friction(geometry), "structure_damping": self.damping,
-                "structure_friction_on": self.friction_on, "structure_friction_given": self.friction,
-                "structure_pendulum_length_m": float(geometry.L), "structure_period_s": period(geometry.L)}
+        given = self.friction if isinstance(self.friction, float) else json.dumps(self.friction, sort_keys=True)
+        out = {"structure_friction": self.device_friction(geometry), "structure_damping": self.damping,
+               "structure_friction_on": self.friction_on, "structure_friction_given": given,
+               "structure_friction_law": " + ".join(law.name for law, _ in self.laws),
+               "structure_pendulum_length_m": float(geometry.L), "structure_period_s": period(geometry.L)}
+        if self.factor != 1.0:
+            out["structure_property_factor"] = self.factor
+        return out
+
+
+def _laws(friction, surfaces) -> list:
+    """[(Law, values)] of ``friction``: one (the device's), or RB1's and RB3's with ``surfaces``."""
+    if surfaces and isinstance(friction, list):
+        if len(friction) != 2:
+            raise StructureError(f"structure.friction: with friction_on: surfaces, one law or number for both "
+                                 f"surfaces or a list of two (RB1's, RB3's), got {len(friction)}")
+        return [_law(f, f"structure.friction[{i}]") for i, f in enumerate(friction)]
+    one = _law(friction, "structure.friction")
+    return [one, one] if surfaces else [one]
+
+
+def _law(spec, key) -> tuple:
+    """(Law, values) of a number (Coulomb's μ) or a law mapping; errors name ``key``."""
+    if isinstance(spec, (int, float, np.integer, np.floating)) and not isinstance(spec, bool):
+        if not (math.isfinite(float(spec)) and 0.0 <= float(spec) < 1.0):
+            raise StructureError(f"{key}: {float(spec)!r} is outside 0 <= μ < 1")
+        return COULOMB, {"mu": float(spec)}
+    if not isinstance(spec, dict):
+        raise StructureError(f"{key}: expected a number (Coulomb's μ) or a law {{law: {' | '.join(LAWS)}, ...}}, "
+                             f"got {type(spec).__name__} {spec!r}")
+    name = spec.get("law")
+    if name not in LAWS:
+        raise StructureError(f"{key}.law: must be one of {list(LAWS)}, got {name!r}")
+    try:
+        return LAWS[name], LAWS[name].values(spec, key)
+    except FrictionError as err:
+        raise StructureError(*err.messages) from None
 
 
 def period(L) -> float:
@@ -269,6 +336,8 @@ class Response(NamedTuple):
     peaks: tuple = (math.nan, math.nan)
     normal: np.ndarray | None = None
     uplift: list | None = None
+    friction: np.ndarray | None = None  # (T,) μ(t) of a friction law (None: Coulomb's constant μ)
+    temperature: np.ndarray | None = None  # (T, surfaces) the plates' temperatures (°C) of a temperature law
 
 
 #: a structure's summaries of one history: name -> (units, long_name)
@@ -302,29 +371,42 @@ def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
     """The structure's response to ``ground`` at ``times`` (s, within the ground's span), on the device
     ``geometry`` (its pendulum length L, and R1, R3 for a surfaces' friction); at rest (u = u̇ = 0) at
     ``ground.time[0]``."""
-    return solve(ground, times, float(geometry.L), structure.device_friction(geometry), structure.damping)
+    if structure.coulomb:
+        return solve(ground, times, float(geometry.L), structure.device_friction(geometry), structure.damping)
+    return solve(ground, times, float(geometry.L), math.nan, structure.damping, law=structure.rows(geometry))
 
 
-def solve(ground: Ground, times, L, mu, zeta, compiled=None) -> Response:
-    """:func:`respond` for any μ >= 0 (μ = 0: free sliding, the pendulum alone) and 0 <= ζ < 1;
-    ``compiled`` None: the kernels compiled for a long record, interpreted for a short one.
+def solve(ground: Ground, times, L, mu, zeta, compiled=None, law=None) -> Response:
+    """:func:`respond` for any μ >= 0 (μ = 0: free sliding, the pendulum alone) and 0 <= ζ < 1, or a
+    friction ``law`` (its kernel rows, ``friction.row``: then ``mu`` is not used); ``compiled`` None: the
+    kernels compiled for a long record, interpreted for a short one.
 
     With a vertical acceleration a_v (``ground.v0``), the normal force is N = W (1 + a_v/g) and both the
     restoring force and the friction scale with it (N/W <= 0: the superstructure lifts off, and the
     device holds it neither way: u follows ü = -a_g - 2ζω u̇ until it lands); solved in one component
-    as in two, by the two-component integrator."""
+    as in two, by the two-component integrator, as is a friction law."""
     refined, index = ground.refined(times)
     omega = math.sqrt(G / L)
     components = refined.a0.shape[1]
     vertical = refined.has_vertical
-    if components == 1 and not vertical:
+    temperature = None
+    if components == 1 and not vertical and law is None:
         u, v, z, stick = _line(refined.time, refined.a0[:, 0], refined.a1[:, 0], omega, zeta, mu * G, compiled)
         u, v, z = u[:, None], v[:, None], z[:, None]
-    else:
-        u, v, z, stick = _plane(refined, omega, zeta, mu * G, compiled)
+        coefficient = np.full(u.shape[0], float(mu))
+    elif law is None:
+        u, v, z, stick, _, _ = _plane(refined, omega, zeta, mu * G, compiled)
         u, v, z = u[:, :components], v[:, :components], z[:, :components]
+        coefficient = np.full(u.shape[0], float(mu))
+    else:
+        u, v, z, stick, temperature, coefficient = _plane(refined, omega, zeta, G, compiled, law)
+        u, v, z = u[:, :components], v[:, :components], z[:, :components]
+        temperature = temperature[:, :len(law)] if np.any(np.asarray(law)[:, 0] == 3.0) else None
     normal = refined.normal()
-    force = (u / L + mu * z) * np.maximum(normal, 0.0)[:, None] if vertical else u / L + mu * z
+    if law is None:
+        force = (u / L + mu * z) * np.maximum(normal, 0.0)[:, None] if vertical else u / L + mu * z
+    else:
+        force = (u / L + coefficient[:, None] * z) * np.maximum(normal, 0.0)[:, None]
     span = slice(index[0], None)  # to the record's end, past the last requested time
     peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, force))
     uplift = None
@@ -332,7 +414,9 @@ def solve(ground: Ground, times, L, mu, zeta, compiled=None) -> Response:
         peaks += (float(np.min(normal[span])),)
         uplift = [(max(a, float(times[0])), b) for a, b in refined.uplift() if b > times[0]]
     u, v, z, stick = u[index], v[index], z[index], stick[index]
-    return Response(u, v, z, force[index], stick, peaks, None if uplift is None else normal[index], uplift)
+    return Response(u, v, z, force[index], stick, peaks, None if uplift is None else normal[index], uplift,
+                    None if law is None else coefficient[index],
+                    None if temperature is None else temperature[index])
 
 
 #: stick/slip phases in one sample interval beyond which the solver gives up (a chatter it cannot resolve)
@@ -540,6 +624,14 @@ def _normal(t, load):
 
 
 @scalar.jit
+def _coefficient(t, y, load, law):
+    """The friction law's coefficient at t (from the slide's start) and y: exactly 1 for Coulomb friction
+    (whose μ g is load[6]); a law's μ at the speed |u̇|, N/W and the surfaces' temperatures load[9:11]."""
+    speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
+    return device_mu(law, speed, _normal(t, load), load[9], load[10])
+
+
+@scalar.jit
 def _force(t, y, load):
     """f = -a_g - ω² (N/W) u at t (from the slide's start) and y, the ground's acceleration from there
     b0 + b1 t; load = (b0x, b0y, b1x, b1y, ω², 2ζω, μ g, n0, n1), N/W = n0 + n1 t."""
@@ -548,11 +640,11 @@ def _force(t, y, load):
 
 
 @scalar.jit
-def _rhs(t, y, row, K, load, start):
+def _rhs(t, y, row, K, load, law, start):
     """K[row] = dy/dt: u̇ and ü = f - 2ζω u̇ - μ g (N/W) z, z the direction of u̇ (of f for a ``start`` from
     rest)."""
     f0, f1 = _force(t, y, load)
-    friction = load[6] * _normal(t, load)
+    friction = load[6] * _coefficient(t, y, load, law) * _normal(t, load)
     d0, d1 = (f0, f1) if start else (y[2], y[3])
     size = math.sqrt(d0 * d0 + d1 * d1)
     if size > 0.0:
@@ -565,7 +657,7 @@ def _rhs(t, y, row, K, load, start):
 
 
 @scalar.jit
-def _step(t, y, h, K, out, trial, load, start, A, B, C):
+def _step(t, y, h, K, out, trial, load, law, start, A, B, C):
     """One DOP853 step of length h from (t, y), K[0] the derivative there: out = y(t + h), the stages in
     K, K[STAGES] the derivative at t + h."""
     for s in range(1, STAGES):
@@ -574,13 +666,13 @@ def _step(t, y, h, K, out, trial, load, start, A, B, C):
             for j in range(s):
                 acc += K[j * SIZE + c] * A[s * STAGES + j]
             trial[c] = y[c] + acc * h
-        _rhs(t + C[s] * h, trial, s, K, load, start)
+        _rhs(t + C[s] * h, trial, s, K, load, law, start)
     for c in range(SIZE):
         acc = 0.0
         for j in range(STAGES):
             acc += K[j * SIZE + c] * B[j]
         out[c] = y[c] + h * acc
-    _rhs(t + h, out, STAGES, K, load, start)
+    _rhs(t + h, out, STAGES, K, load, law, start)
 
 
 @scalar.jit
@@ -602,7 +694,7 @@ def _error(y, out, h, K, rtol, atol, E3, E5):
 
 
 @scalar.jit
-def _first_step(y, end, K, trial, load, start, rtol, atol):
+def _first_step(y, end, K, trial, load, law, start, rtol, atol):
     """Hairer's first step for order 8 (scipy's ``select_initial_step``); K[0] the derivative at y."""
     d0, d1 = 0.0, 0.0
     for c in range(SIZE):
@@ -613,7 +705,7 @@ def _first_step(y, end, K, trial, load, start, rtol, atol):
     h0 = min(1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1, end)
     for c in range(SIZE):
         trial[c] = y[c] + h0 * K[c]
-    _rhs(h0, trial, STAGES, K, load, start)  # K[STAGES] is scratch here
+    _rhs(h0, trial, STAGES, K, load, law, start)  # K[STAGES] is scratch here
     d2 = 0.0
     for c in range(SIZE):
         g = (K[STAGES * SIZE + c] - K[c]) / (atol + abs(y[c]) * rtol)
@@ -624,11 +716,11 @@ def _first_step(y, end, K, trial, load, start, rtol, atol):
 
 
 @scalar.jit
-def _g(event, t, y, load):
+def _g(event, t, y, load, law):
     """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g N/W (HELD)."""
     if event == HELD:
         f0, f1 = _force(t, y, load)
-        return math.sqrt(f0 * f0 + f1 * f1) - load[6] * _normal(t, load)
+        return math.sqrt(f0 * f0 + f1 * f1) - load[6] * _coefficient(t, y, load, law) * _normal(t, load)
     speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
     return speed - (REST_SPEED if event == STOP else START_SPEED)
 
@@ -647,7 +739,7 @@ def _crosses(event, g_old, g_new):
 
 
 @scalar.jit
-def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
+def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C):
     """The length s in (0, h] of the step from (t, y) that reaches the event (bisection to BRACKET), the
     event being past at h and not at 0; ``out`` is scratch."""
     lo, hi = 0.0, h
@@ -655,8 +747,8 @@ def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        _step(t, y, mid, K, out, trial, load, start, A, B, C)
-        if _beyond(event, _g(event, t + mid, out, load)):
+        _step(t, y, mid, K, out, trial, load, law, start, A, B, C)
+        if _beyond(event, _g(event, t + mid, out, load, law)):
             hi = mid
         else:
             lo = mid
@@ -664,13 +756,13 @@ def _locate(event, t, y, h, K, out, trial, load, start, A, B, C):
 
 
 @scalar.jit
-def _integrate(y, end, h, load, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial):
+def _integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial):
     """DOP853 over [0, end] from y (overwritten with the state reached): (what ended it, when, the next
     step). Events: STOP if ``stop``; MOVING and HELD for a ``start``; the earliest ends the slide."""
     t = 0.0
-    _rhs(t, y, 0, K, load, start)
+    _rhs(t, y, 0, K, load, law, start)
     if h <= 0.0:
-        h = _first_step(y, end, K, trial, load, start, rtol, atol)
+        h = _first_step(y, end, K, trial, load, law, start, rtol, atol)
     carry = h
     while t < end:
         rejected = False
@@ -679,7 +771,7 @@ def _integrate(y, end, h, load, start, stop, rtol, atol, A, B, C, E3, E5, K, out
                 return TOO_SHORT, t, h
             t_new = min(t + h, end)
             taken = t_new - t
-            _step(t, y, taken, K, out, trial, load, start, A, B, C)
+            _step(t, y, taken, K, out, trial, load, law, start, A, B, C)
             error = _error(y, out, taken, K, rtol, atol, E3, E5)
             if error < 1.0:
                 factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** EXPONENT)
@@ -690,17 +782,17 @@ def _integrate(y, end, h, load, start, stop, rtol, atol, A, B, C, E3, E5, K, out
                 break
             h = taken * max(MIN_FACTOR, SAFETY * error ** EXPONENT)
             rejected = True
-        crossed = (stop and _crosses(STOP, _g(STOP, t, y, load), _g(STOP, t_new, out, load)),
-                   start and _crosses(MOVING, _g(MOVING, t, y, load), _g(MOVING, t_new, out, load)),
-                   start and _crosses(HELD, _g(HELD, t, y, load), _g(HELD, t_new, out, load)))
+        crossed = (stop and _crosses(STOP, _g(STOP, t, y, load, law), _g(STOP, t_new, out, load, law)),
+                   start and _crosses(MOVING, _g(MOVING, t, y, load, law), _g(MOVING, t_new, out, load, law)),
+                   start and _crosses(HELD, _g(HELD, t, y, load, law), _g(HELD, t_new, out, load, law)))
         first, length = NONE, taken
         for event in (STOP, MOVING, HELD):
             if crossed[event - 1]:
-                s = _locate(event, t, y, taken, K, out, trial, load, start, A, B, C)
+                s = _locate(event, t, y, taken, K, out, trial, load, law, start, A, B, C)
                 if first == NONE or s < length:
                     first, length = event, s
         if first != NONE:
-            _step(t, y, length, K, out, trial, load, start, A, B, C)
+            _step(t, y, length, K, out, trial, load, law, start, A, B, C)
             for c in range(SIZE):
                 y[c] = out[c]
             return first, t + length, carry
@@ -759,11 +851,14 @@ def _state(k, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick):
         z[k, 0], z[k, 1] = d0 / size, d1 / size
 
 
-def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z,
-          stick):
-    """The two-component history at the interval ends (the module docstring) into u, u̇, z (n, 2) and
-    sticking (n,), N/W on interval k being n0[k] + n1[k] (t - t_k) (0 where that is negative): (DONE, 0),
-    or (CHATTER or FAILED, the interval where the run stopped)."""
+def plane(time, a0, a1, n0, n1, law, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z,
+          stick, heat, temperature, mu):
+    """The two-component history at the interval ends (the module docstring) into u, u̇, z (n, 2),
+    sticking (n,), the surfaces' temperatures (n, 2) and the friction coefficient (n,), N/W on interval
+    k being n0[k] + n1[k] (t - t_k) (0 where that is negative) and the friction ``friction`` times the
+    law's coefficient (``law``: a row per surface, ``friction.row``; Coulomb's is 1 and ``friction``
+    its μ g); ``heat`` (n - 1, 2) holds the heat flux into each surface's plate over each interval:
+    (DONE, 0), or (CHATTER or FAILED, the interval where the run stopped)."""
     n = time.size
     w2, damp = omega * omega, 2 * zeta * omega
     x0, x1, w0, w1 = 0.0, 0.0, 0.0, 0.0
@@ -771,11 +866,18 @@ def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, 
     # within the integration's own accuracy (as a Coulomb oscillator's last stop under a constant load)
     # is not left to the rounding of the state there
     hold = friction * (1.0 + rtol)
+    heats = False  # a law whose friction follows the plates' temperatures
+    for s in range(len(law)):
+        temperature[0, s] = law[s][17]
+        heats = heats or law[s][0] == 3.0
+    t0, t1 = temperature[0, 0], temperature[0, 1]
     m = max(n0[0], 0.0)
+    rest = device_mu(law, 0.0, m, t0, t1)
     f0, f1 = -a0[0, 0], -a0[0, 1]
-    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold * m
+    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold * rest * m
     starting = sliding and friction > 0.0  # a start from rest, until |u̇| reaches START_SPEED
-    _state(0, x0, x1, w0, w1, f0, f1, sliding, friction * m, u, v, z, stick)
+    _state(0, x0, x1, w0, w1, f0, f1, sliding, friction * rest * m, u, v, z, stick)
+    mu[0] = rest
     h_next = 0.0  # the integrator's step, carried while the structure slides on
     for k in range(n - 1):
         h = time[k + 1] - time[k]
@@ -789,8 +891,10 @@ def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, 
             m0, m1 = n0[k] + n1[k] * tau, n1[k]
             end = h - tau
             if not sliding:
+                # the breakaway value at the phase's start (it moves with N/W only under a pressure factor)
+                rest = device_mu(law, 0.0, max(m0, 0.0), t0, t1)
                 when = _breakaway(-b00 - w2 * m0 * x0, -b01 - w2 * m0 * x1, -b10 - w2 * m1 * x0, -b11 - w2 * m1 * x1,
-                                  hold, m0, m1, end)
+                                  hold * rest, m0, m1, end)
                 tau += when if when >= 0.0 else end
                 sliding = starting = when >= 0.0
                 h_next = 0.0
@@ -801,9 +905,9 @@ def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, 
                 # vanishing time; until |u̇| reaches START_SPEED (in this interval or a later one) the
                 # friction is taken along the force (exact along a line), which spares the integrator
                 # the direction of a velocity that is only rounding
-                load = (b00, b01, b10, b11, w2, damp, friction, m0, m1)
-                ended, when, h_next = _integrate(y, end, 0.0, load, True, False, rtol, atol, A, B, C, E3, E5, K,
-                                                 out, trial)
+                load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1)
+                ended, when, h_next = _integrate(y, end, 0.0, load, law, True, False, rtol, atol, A, B, C, E3, E5,
+                                                 K, out, trial)
                 if ended == TOO_SHORT:
                     return FAILED, k
                 if ended == HELD:  # the force fell back within the friction: at rest again
@@ -816,15 +920,16 @@ def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, 
                 tau, end, h_next, starting = tau + when, end - when, 0.0, False  # moving
                 b00, b01 = b00 + b10 * when, b01 + b11 * when
                 m0 = m0 + m1 * when
-            load = (b00, b01, b10, b11, w2, damp, friction, m0, m1)
-            ended, when, h_next = _integrate(y, end, h_next, load, False, friction > 0.0, rtol, atol, A, B, C, E3,
-                                             E5, K, out, trial)
+            load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1)
+            ended, when, h_next = _integrate(y, end, h_next, load, law, False, friction > 0.0, rtol, atol, A, B, C,
+                                             E3, E5, K, out, trial)
             if ended == TOO_SHORT:
                 return FAILED, k
             if ended == STOP:  # at rest: the last REST_SPEED at the deceleration there, to first order
                 speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
                 g0, g1 = _force(when, y, load)
-                slowing = friction * _normal(when, load) + damp * speed - (g0 * y[2] + g1 * y[3]) / speed
+                slowing = (friction * _coefficient(when, y, load, law) * _normal(when, load) + damp * speed
+                           - (g0 * y[2] + g1 * y[3]) / speed)
                 last = min(speed / slowing, end - when) if slowing > 0.0 else 0.0
                 x0, x1, w0, w1 = y[0] + 0.5 * last * y[2], y[1] + 0.5 * last * y[3], 0.0, 0.0
                 when += last
@@ -832,21 +937,57 @@ def plane(time, a0, a1, n0, n1, omega, zeta, friction, rtol, atol, A, B, C, E3, 
                 m = _normal(when, load)
                 g0 = -(b00 + b10 * when) - w2 * m * x0
                 g1 = -(b01 + b11 * when) - w2 * m * x1
-                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold * m
+                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold * device_mu(law, 0.0, m, t0, t1) * m
                 h_next = 0.0
                 continue
             x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
         m = max(n0[k] + n1[k] * h, 0.0)
+        if heats:
+            t0, t1 = _heated(k, time, u, x0, x1, max(n0[k] + n1[k] * 0.5 * h, 0.0), law, heat, temperature)
         f0 = -(a0[k, 0] + a1[k, 0] * h) - w2 * m * x0
         f1 = -(a0[k, 1] + a1[k, 1] * h) - w2 * m * x1
-        _state(k + 1, x0, x1, w0, w1, f0, f1, sliding, friction * m, u, v, z, stick)
+        mu[k + 1] = device_mu(law, 0.0 if not sliding else math.sqrt(w0 * w0 + w1 * w1), m, t0, t1)
+        rest = device_mu(law, 0.0, m, t0, t1)
+        _state(k + 1, x0, x1, w0, w1, f0, f1, sliding, friction * rest * m, u, v, z, stick)
     return DONE, 0
 
 
-def _plane(ground: Ground, omega, zeta, friction, compiled=None):
-    """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2) and
-    sticking; one component runs as the first of two, the second without load; ``compiled`` None:
-    compiled for a long record (``backend``), interpreted for a short one."""
+@scalar.jit
+def _heated(k, time, u, x0, x1, normal, law, heat, temperature):
+    """The plates' temperatures at the end of interval k (the stroke there x0, x1; at its start u[k]) after
+    the heat flux of the interval, q = λ μ p v with its mean sliding speed v and N/W ``normal``, into each
+    surface's plate while the slider covers the plate's centre; the half-space's surface temperature for
+    a flux constant over each interval (the module docstring of ``friction``)."""
+    h = time[k + 1] - time[k]
+    d0, d1 = x0 - u[k, 0], x1 - u[k, 1]
+    c0, c1 = 0.5 * (x0 + u[k, 0]), 0.5 * (x1 + u[k, 1])
+    moved, middle = math.sqrt(d0 * d0 + d1 * d1), math.sqrt(c0 * c0 + c1 * c1)
+    for s in range(len(law)):
+        r = law[s]
+        if r[0] != 3.0:
+            temperature[k + 1, s] = temperature[k, s]
+            continue
+        speed = r[2] * moved / h
+        covered = r[2] * middle < r[16] * 0.8862269254527580  # √π / 2: the contact circle's equal square
+        heat[k, s] = r[3] * surface_mu(r, speed, normal, temperature[k, s]) * r[7] * normal * speed if covered else 0.0
+        rise = 0.0
+        end = time[k + 1]
+        for j in range(k + 1):
+            rise += heat[j, s] * (math.sqrt(end - time[j]) - math.sqrt(end - time[j + 1]))
+        temperature[k + 1, s] = r[17] + 2.0 * math.sqrt(r[14] / math.pi) / r[15] * rise
+    return temperature[k + 1, 0], temperature[k + 1, 1]
+
+
+#: the law of Coulomb friction in the kernels: a coefficient of exactly 1 times ``friction`` = μ g
+UNIT_LAW = np.array([[0.0, 1.0, 1.0, 1.0, 1.0] + [0.0] * (ROW - 5)])
+
+
+def _plane(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT_LAW):
+    """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2), sticking,
+    the plates' temperatures (n, 2) and the law's coefficient (n,); one component runs as the first of
+    two, the second without load; ``friction`` is μ g for Coulomb friction (``law`` UNIT_LAW), g for a
+    law (its rows, ``friction.row``); ``compiled`` None: compiled for a long record (``backend``),
+    interpreted for a short one."""
     from . import backend
 
     time, a0, a1 = ground.time, ground.a0, ground.a1
@@ -857,24 +998,27 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None):
     else:
         n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
     n = time.size
-    if compiled is None:
-        compiled = backend.choose(n - 1, INTERVAL_WORK) == "numba"
+    if compiled is None:  # the plates' heat sums over the intervals before: about n / 200 case-steps more each
+        heats = bool(np.any(np.asarray(law)[:, 0] == 3.0))
+        compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
     run = scalar.kernel(plane) if compiled else plane
     work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
     if not compiled:
         work = tuple(w.tolist() for w in work)
     u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     stick = np.zeros(n, dtype=bool)
+    heat, temperature, mu = np.zeros((max(n - 1, 1), 2)), np.zeros((n, 2)), np.zeros(n)
+    law = np.ascontiguousarray(law, dtype=float) if compiled else np.asarray(law, dtype=float).tolist()
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
                     np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
-                    np.ascontiguousarray(n1, dtype=float), float(omega), float(zeta), float(friction), float(RTOL),
-                    float(ATOL), *_tableau(compiled), *work, u, v, z, stick)
+                    np.ascontiguousarray(n1, dtype=float), law, float(omega), float(zeta), float(friction),
+                    float(RTOL), float(ATOL), *_tableau(compiled), *work, u, v, z, stick, heat, temperature, mu)
     if status == CHATTER:
         raise _chatter(time[k])
     if status == FAILED:
         raise RuntimeError(f"structure: the two-component integration's step fell below {MIN_STEP:g} s in the "
                            f"sample interval at t = {time[k]:g} s; report the record and the structure")
-    return u, v, z, stick
+    return u, v, z, stick, temperature, mu
 
 
 def warm():

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import re
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 
@@ -519,7 +519,7 @@ def _structure(value, axes) -> Structure | None:
     for key in swept:
         for i, v in enumerate(axes[key]):
             try:
-                Structure(**{**vars(base), key: float(v)})
+                replace(base, **{key: float(v)})
             except StructureError as err:
                 raise StudyError(str(err).replace(f"structure.{key}", f"sweep.{key}[{i}]")) from None
     return base
