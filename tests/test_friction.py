@@ -172,3 +172,53 @@ def test_a_case_carries_the_laws_coefficient_speed_and_temperature():
     assert np.allclose(ds["sliding_speed"].values, np.abs(ds["stroke_velocity"].values), rtol=0, atol=0)
     assert ds.attrs["structure_friction_law"] == "temperature" and ds.attrs["structure_property_factor"] == 0.9
     assert ds["surface_temperature"].values.max() > 40.0
+
+
+# --- bounds in a study ------------------------------------------------------------------------------------------
+def _bounds_study(tmp_path, **changes):
+    import shutil
+
+    from dccss.studies import Study, combine, run_chunk
+
+    (tmp_path / "records").mkdir(exist_ok=True)
+    for name in ("synthetic.AT2", "synthetic_y.AT2"):
+        shutil.copy(f"{RECORDS}/{name}", tmp_path / "records" / name)
+    config = {"study": {"name": "bounds"}, "prototype": "DFP1", "dt": 0.02, "models": ["compliant"],
+              "excitation": {"kind": "record", "scale": 2.0},
+              "structure": {"friction": {"law": "velocity", "slow": 0.03, "fast": 0.07, "rate": 20.0},
+                            "property": {"lower": 0.8, "upper": 1.3}},
+              "sweep": {"record": ["records/synthetic.AT2", "records/synthetic_y.AT2"],
+                        "property": ["lower", "nominal", "upper"]}, **changes}
+    study = Study.from_config(config, tmp_path)
+    return study, combine(study, {"compliant": [run_chunk(study, "compliant", k) for k in range(study.grid.n_chunks)]})
+
+
+def test_the_envelope_over_the_bounds_is_the_largest_of_the_bound_runs(tmp_path):
+    study, ds = _bounds_study(tmp_path)
+    for name in ("stroke_max_abs", "shear_ratio_max_abs", "stroke_max_abs_suite", "shear_ratio_max_abs_suite"):
+        assert np.array_equal(ds[f"{name}_envelope"].values, np.max(ds[name].values, axis=ds[name].dims.index(
+            "property")), equal_nan=True)
+    # each bound is the law with every coefficient times its factor
+    upper = ds["stroke_max_abs"].sel(model="compliant", property="upper", record="synthetic").values
+    alone = respond(_one().ground_acceleration(), study.grid.times(0.02), DFP1,
+                    Structure({"law": "velocity", "slow": 0.03, "fast": 0.07, "rate": 20.0}, factor=1.3))
+    assert float(upper) == alone.peaks[0]
+    lower, nominal = (ds["stroke_max_abs"].sel(model="compliant", property=p).values for p in ("lower", "nominal"))
+    assert np.all(lower > nominal)  # less friction, more displacement on this record
+
+
+def test_a_nominal_property_axis_is_the_study_without_it(tmp_path):
+    _, plain = _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2", "records/synthetic_y.AT2"]})
+    _, nominal = _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2", "records/synthetic_y.AT2"],
+                                                "property": ["nominal"]})
+    for name in ("stroke_max_abs", "theta2_max_abs", "shear_ratio_max_abs"):
+        assert np.array_equal(plain[name].values, nominal[name].sel(property="nominal").values)
+
+
+def test_a_bound_without_its_factor_is_named(tmp_path):
+    from dccss.studies import StudyError
+
+    with pytest.raises(StudyError, match=r"sweep.property\[2\]: 'upper' needs its factor, structure.property.upper"):
+        _bounds_study(tmp_path, structure={"friction": 0.05, "property": {"lower": 0.8}})
+    with pytest.raises(StudyError, match=r"sweep.property\[0\]: must be one of \['lower', 'nominal', 'upper'\]"):
+        _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2"], "property": ["low"]})

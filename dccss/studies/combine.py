@@ -56,9 +56,10 @@ def structure_attrs(study) -> dict:
         return {}
     s, out = study.structure, {"structure_friction_on": study.structure.friction_on}
     if "friction" not in study.axes:
-        out["structure_friction_given"] = s.friction
-        if s.friction_on == "device":
-            out["structure_friction"] = s.friction
+        given = s.attrs(Geometry.from_degrees(**study.prototype))["structure_friction_given"]
+        out["structure_friction_given"] = given
+        if s.friction_on == "device" and s.coulomb and "property" not in study.axes:
+            out["structure_friction"] = s.friction * s.factor
     if "damping" not in study.axes:
         out["structure_damping"] = s.damping
     if not any(axis in study.axes for axis in ("prototype", *PARAMETERS)):  # one device: its pendulum
@@ -93,7 +94,30 @@ def combine(study, chunks: dict) -> xr.Dataset:
     out = xr.concat(per_model, dim="model").assign_coords(coords)
     if study.records:
         out = out.assign(record_peaks(study)).merge(statistics(out))
+    if "property" in study.axes:
+        out = out.assign(envelope(out))
     out.attrs = study_attrs(study)
+    return out
+
+
+#: the demands whose envelope over the friction's bounds the design codes take, and the clause
+ENVELOPE = {"stroke_max_abs": "the displacement demand (ASCE 7-22 17.2.8.4 and EN 15129: from the lower bound, "
+                              "or whichever bound gives more)",
+            "shear_ratio_max_abs": "the force demand (ASCE 7-22 17.2.8.4 and EN 15129: from the upper bound, or "
+                                   "whichever bound gives more)"}
+
+
+def envelope(ds) -> dict:
+    """``<name>_envelope`` (and ``<name>_suite_envelope`` for a suite's statistics): the largest over the
+    ``property`` axis (the friction's lower, nominal and upper bounds) of the structure's displacement and
+    force demands (:data:`ENVELOPE`)."""
+    out = {}
+    for name, what in ENVELOPE.items():
+        for full in (name, f"{name}_suite"):
+            if full in ds:
+                out[f"{full}_envelope"] = ds[full].max("property").assign_attrs(
+                    units=ds[full].attrs.get("units", "1"),
+                    long_name=f"{ds[full].attrs.get('long_name', full)}, largest over the friction's bounds: {what}")
     return out
 
 

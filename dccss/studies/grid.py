@@ -81,7 +81,7 @@ class Grid:
 
     def point(self, case) -> dict:
         """{axis: value} of one case (str for prototype names, float otherwise)."""
-        return {k: (str(v[0]) if k in ("record", "prototype", "component") else float(v[0]))
+        return {k: (str(v[0]) if k in ("record", "prototype", "component", "property") else float(v[0]))
                 for k, v in self.values(np.array([case])).items()}
 
     def geometry(self, cases) -> Geometry:
@@ -120,7 +120,8 @@ class Grid:
         study, values = self.study, self.values(cases)
         if study.structure is None:
             return [None] * len(cases)
-        return [replace(study.structure, **{k: float(values[k][i]) for k in ("friction", "damping") if k in values})
+        return [replace(study.structure, **{k: float(values[k][i]) for k in ("friction", "damping") if k in values},
+                        **({"factor": study.bounds[str(values["property"][i])]} if "property" in values else {}))
                 for i in range(len(cases))]
 
     def pendulums(self, cases) -> list:

@@ -118,8 +118,11 @@ def history_mapping(study, i, model) -> dict:
                "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
                "capacity": study.capacity, "on_failure": study.options.on_failure}
     if study.structure is not None:
-        own = {k: float(point.get(k, getattr(study.structure, k))) for k in ("friction", "damping")}
-        mapping["structure"] = {**own, "friction_on": study.structure.friction_on}
+        s = study.structure
+        factor = study.bounds[point["property"]] if "property" in point else s.factor
+        mapping["structure"] = {"friction": float(point["friction"]) if "friction" in point else s.friction,
+                                "damping": float(point.get("damping", s.damping)), "friction_on": s.friction_on,
+                                **({"property": factor} if factor != 1.0 else {})}
     return mapping
 
 

@@ -31,10 +31,12 @@ from .grid import PLATE3_FOLLOWS, Grid
 #: (x, y or both) keeps one or both components of a two-component one
 EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "rotation", "component")
 #: the isolated structure's parameters (``structure``; sweeping one gives a study a structure)
-STRUCTURE_AXES = ("friction", "damping")
+STRUCTURE_AXES = ("friction", "damping", "property")
+#: the friction's bounds a ``property`` axis takes (``structure.property`` gives lower's and upper's factors)
+BOUNDS = ("lower", "nominal", "upper")
 AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
 #: sweep axes whose values are names, not numbers
-CATEGORICAL = ("record", "prototype", "component")
+CATEGORICAL = ("record", "prototype", "component", "property")
 #: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
 #: checks a study against as well
 KEYS = set(schema("study")["properties"])
@@ -219,6 +221,7 @@ class Study:
     histories: list = field(default_factory=list)
     animate: list = field(default_factory=list)  # indices of the histories to animate
     structure: Structure | None = None  # the base structure (None: the ground displacement is imposed)
+    bounds: dict = field(default_factory=lambda: {"nominal": 1.0})  # property axis label -> the friction's factor λ
     records: dict = field(default_factory=dict)  # a record axis: name -> its excitation (processed once)
     record_entries: dict = field(default_factory=dict)  # name -> its file or pair [x, y], as in the study file
 
@@ -272,6 +275,7 @@ class Study:
         else:
             dt = problems.check("dt", number, config["dt"], "dt", positive=True) if "dt" in config else None
         structure = problems.check("structure", _structure, config.get("structure"), axes) if axes is not None else None
+        bounds = problems.check("structure", _bounds, config.get("structure"), axes) if axes is not None else None
         options = problems.check("newton", newton_from, config.get("newton"))
         policy = problems.check("on_failure", choice, given["on_failure"], "on_failure", FAILURE_POLICIES)
         theta2_0 = problems.check("theta2_0", number, given["theta2_0"], "theta2_0")
@@ -292,7 +296,7 @@ class Study:
                     excitation_spec=dict(config["excitation"]), theta2_0=theta2_0, dt=dt, models=list(models),
                     normals=normals, axes=axes, chunk_size=chunk_size, capacity=capacity,
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
-                    base=base, structure=structure, records=records,
+                    base=base, structure=structure, bounds=bounds, records=records,
                     record_entries=record_entries(config["sweep"]["record"], base) if records else {})
         study.marks = marks
         _check_grid(study.grid)
@@ -439,6 +443,12 @@ def _axis_values(key, spec, known, symmetric):
         for i, label in enumerate(spec):
             choice(label, f"sweep.component[{i}]", COMPONENTS)
         return np.array(spec, dtype=str)
+    if key == "property":
+        if not isinstance(spec, list) or not spec:
+            raise StudyError(f"sweep.property: expected a non-empty list of {list(BOUNDS)}, got {spec!r}")
+        for i, label in enumerate(spec):
+            choice(label, f"sweep.property[{i}]", BOUNDS)
+        return np.array(spec, dtype=str)
     if key == "theta2_0":
         values = axis_values(spec, "sweep.theta2_0")
         for i, v in enumerate(values):
@@ -498,13 +508,17 @@ def _steps(config, axes, excitation) -> float | None:
 def _structure(value, axes) -> Structure | None:
     """The study's base structure: its ``structure`` key, or one made by sweeping friction (with damping
     0 unless given); every swept value checked."""
-    swept = [k for k in STRUCTURE_AXES if k in axes]
+    swept = [k for k in ("friction", "damping") if k in axes]
     if value is None and not swept:
+        if "property" in axes:
+            raise StudyError("sweep.property: the friction's bounds are a structure's: give structure (its friction "
+                             "and property: {lower: ..., upper: ...})")
         return None
     if value is None:
         value = {}
     if not isinstance(value, dict):
         raise StudyError(f"structure: expected a mapping {{friction, damping}}, got {value!r}")
+    value = {k: v for k, v in value.items() if not (k == "property" and isinstance(v, dict))}  # the bounds
     if "friction" not in value:
         if "friction" not in axes:
             raise StudyError("structure.friction: missing: give the device's friction coefficient, or sweep it "
@@ -523,6 +537,25 @@ def _structure(value, axes) -> Structure | None:
             except StructureError as err:
                 raise StudyError(str(err).replace(f"structure.{key}", f"sweep.{key}[{i}]")) from None
     return base
+
+
+def _bounds(value, axes) -> dict:
+    """The friction's property modification factors by bound: nominal 1, lower and upper from
+    ``structure.property: {lower: λ_min, upper: λ_max}``; each one a ``property`` axis takes must be given."""
+    given = value.get("property") if isinstance(value, dict) else None
+    if given is not None and not isinstance(given, dict):
+        if "property" in axes:
+            raise StudyError(f"structure.property: a property axis takes its bounds from {{lower: λ_min, upper: "
+                             f"λ_max}}, got {given!r}")
+        return {"nominal": 1.0}
+    given = given or {}
+    check_keys(given, "structure.property", (), ("lower", "upper"))
+    bounds = {"nominal": 1.0, **{k: number(v, f"structure.property.{k}", positive=True) for k, v in given.items()}}
+    for i, label in enumerate(axes.get("property", [])):
+        if label not in bounds:
+            raise StudyError(f"sweep.property[{i}]: {str(label)!r} needs its factor, structure.property.{label} (the "
+                             f"code's and the manufacturer's λ)")
+    return bounds
 
 
 def _check_frictions(grid):
