@@ -35,7 +35,7 @@ from .mechanics.capacity import CapacityError
 from .mechanics.newton import ConvergenceError
 from .mechanics.scalar import log as kernels_log
 from .mechanics.structure import G
-from .results import failure_of
+from .results import failure_of, friction_text
 from .schema import schema
 
 #: what ``dccss run -o OUT`` writes, by the suffix of OUT
@@ -86,7 +86,8 @@ def _structure(ds) -> str:
     end = ("residual stroke" if "stopped_at_s" not in ds.attrs and not ds.attrs.get("failed") else
            f"stroke where the history ends (t = {float(ds['t'].values[-1]):.6g} s)")  # a cut history has no residual
     a = ds.attrs  # the peaks over the record's samples too (not only the steps), over the whole record
-    return (f"; structure (mu = {a['structure_friction']:g}, zeta = {a['structure_damping']:g}, "
+    return (f"; structure ({friction_text(a).replace('μ', 'mu').replace('λ', 'lambda')}, "
+            f"zeta = {a['structure_damping']:g}, "
             f"T = {a['structure_period_s']:.3g} s): peak |u| = {100 * a['structure_stroke_max_abs_m']:.3f} cm, "
             f"{end} = {residual}, peak |F/W| = {a['structure_shear_ratio_max_abs']:.4f}{_vertical(a)}")
 

@@ -112,6 +112,22 @@ def twin_axis(ax, colour, label):
     return tw
 
 
+def friction_loop(ax, x, y, mu, ls="-", lw=0.9):
+    """The loop (x, y) as a line coloured by the friction coefficient ``mu`` at its points (viridis over
+    the loop's range of μ); the LineCollection, for a colour bar."""
+    from matplotlib.collections import LineCollection
+
+    points = np.column_stack([x, y])
+    segments = np.stack([points[:-1], points[1:]], axis=1)
+    low, high = float(np.nanmin(mu)), float(np.nanmax(mu))
+    lines = LineCollection(segments, cmap="viridis", linestyles=ls, linewidths=lw)
+    lines.set_array(0.5 * (np.asarray(mu)[:-1] + np.asarray(mu)[1:]))
+    lines.set_clim(low, high if high > low else low + 1e-12)
+    ax.add_collection(lines)
+    ax.autoscale_view()
+    return lines
+
+
 def plot_corners(ax, t, ds, which, factor, unit, what="interpenetration, < 0: gap"):
     for c in which:
         ax.plot(t, factor * ds[f"I_{c}"].values, label=I_LABEL[c], **CORNER_STYLE[c])

@@ -16,7 +16,7 @@ import numpy as np
 from matplotlib.patches import Circle, Polygon
 
 from . import drawing
-from .results import geometry_from_attrs, has_structure, imposed, is_bidirectional
+from .results import friction_text, geometry_from_attrs, has_structure, imposed, is_bidirectional
 
 MAX_INSTANTS = 4
 #: legends outside the data: beside the axes (right), or above them on the right (the title on the left)
@@ -281,20 +281,29 @@ def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
         history.plot(t, 100 * ds[f"Xg{suffix}"].values, color="k", lw=1.0, ls=ls, label=f"ground $X_g${name}")
         history.plot(t, 100 * ds[f"stroke{suffix}"].values, color="tab:purple", lw=1.2, ls=ls,
                      label=f"stroke $u${name}")
-        loop.plot(100 * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color="tab:purple", lw=0.9,
-                  ls=ls, label=f"$u${name}" if suffix else None)
+        if "friction_coefficient" in ds:  # a friction law: the loop coloured by μ
+            coloured = drawing.friction_loop(loop, 100 * ds[f"stroke{suffix}"].values,
+                                             ds[f"shear_ratio{suffix}"].values, ds["friction_coefficient"].values, ls)
+        else:
+            loop.plot(100 * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color="tab:purple",
+                      lw=0.9, ls=ls, label=f"$u${name}" if suffix else None)
+    twins = []
+    if "friction_coefficient" in ds:
+        loop.figure.colorbar(coloured, ax=loop, label="friction μ", pad=0.02)
+        twins = [drawing.twin_axis(history, "tab:green", "friction μ")]
+        twins[0].plot(t, ds["friction_coefficient"].values, color="tab:green", lw=0.7, label="friction μ")
     for n in steps:
         history.axvline(t[n], color="0.5", lw=0.7, ls=":")
     a = ds.attrs
-    history.set_title(f"({letters[0]}) the structure on the device (μ = {a['structure_friction']:g}, "
+    history.set_title(f"({letters[0]}) the structure on the device{chr(10) if twins else ' '}({friction_text(a)}, "
                       f"ζ = {a['structure_damping']:g}, T = {a['structure_period_s']:.3g} s)", fontsize=9)
     history.set_xlabel("t (s)")
     history.set_ylabel("displacement (cm)")
-    drawing.legend_on(history, **BESIDE)
+    drawing.legend_on(history, *twins, **(BESIDE if not twins else {**BESIDE, "bbox_to_anchor": (1.2, 1.0)}))
     loop.set_title(f"({letters[1]}) force-displacement loop of the device", fontsize=9)
     loop.set_xlabel("stroke u (cm)")
     loop.set_ylabel("F/W (-)")
-    if len(parts) > 1:
+    if len(parts) > 1 and not twins:
         loop.legend(**BESIDE)
     for ax in (history, loop):
         ax.grid(True, color="0.9", lw=0.6)

@@ -7,6 +7,8 @@ angles, the clearance to the retaining rings and the capacity flag.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -283,6 +285,29 @@ def failure_of(attrs) -> str | None:
     if not int(attrs.get("failed", 0)):
         return None
     return attrs.get("failure_kind", "solver")
+
+
+def friction_text(attrs, surfaces_given=False) -> str:
+    """A structure's friction in words from a dataset's attributes: "μ = 0.05" (Coulomb's; with
+    ``surfaces_given`` a surfaces' friction as given, "$μ_s$ = 0.05 on each surface"), or its law and its
+    breakaway value ("velocity law, μ = 0.03 at rest"); a property factor other than 1 follows ("λ = 1.3")."""
+    law = attrs.get("structure_friction_law", "coulomb")
+    if law.replace(" + ", "") != "coulomb" * (law.count("+") + 1):
+        text = f"{law} law, μ = {attrs['structure_friction']:.3g} at rest"
+    elif surfaces_given and attrs.get("structure_friction_on") == "surfaces" and is_real(
+            attrs.get("structure_friction_given")):
+        text = f"$μ_s$ = {attrs['structure_friction_given']:g} on each surface"
+    else:
+        text = f"μ = {attrs['structure_friction']:g}"
+    if "structure_property_factor" in attrs:
+        text += f", λ = {attrs['structure_property_factor']:g}"
+    return text
+
+
+def is_real(value) -> bool:
+    """A finite int or float (not a bool)."""
+    return (isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
+            and math.isfinite(value))
 
 
 def has_structure(ds) -> bool:

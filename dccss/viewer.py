@@ -9,10 +9,8 @@ import sys
 import textwrap
 from pathlib import Path
 
-import numpy as np
-
 from .mechanics.kinematics import Q_NAMES
-from .results import MODEL_TITLES, failure_of, geometry_from_attrs
+from .results import MODEL_TITLES, failure_of, friction_text, geometry_from_attrs, is_real
 
 #: the size of an animation's frames (inches, dots per inch)
 FIGSIZE, DPI = (11.0, 7.2), 100
@@ -63,12 +61,6 @@ def run_command(name, call, quiet) -> int:
     if not quiet:
         print(f"dccss {name}: wrote {line}")
     return 0
-
-
-def is_real(value) -> bool:
-    """A finite int or float (not a bool)."""
-    return (isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
-            and math.isfinite(value))
 
 
 #: how the component a history keeps of a two-component excitation is said
@@ -122,9 +114,7 @@ def _parameter_texts(attrs) -> list:
     each surface as given) and damping, a start angle other than 0, the time step."""
     texts = []
     if "structure_friction" in attrs:
-        friction = (f"$μ_s$ = {attrs['structure_friction_given']:g} on each surface"
-                    if attrs.get("structure_friction_on") == "surfaces" else f"μ = {attrs['structure_friction']:g}")
-        texts.append(f"structure {friction}, ζ = {attrs['structure_damping']:g}")
+        texts.append(f"structure {friction_text(attrs, surfaces_given=True)}, ζ = {attrs['structure_damping']:g}")
     if attrs.get("theta2_0_deg"):
         texts.append(f"$\\theta^2(t_0)$ = {attrs['theta2_0_deg']:g}°")
     if is_real(attrs.get("dt_s")):

@@ -35,11 +35,11 @@ from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 from matplotlib.transforms import ScaledTranslation
 
-from ..drawing import caption_line, freeze, new_figure
+from ..drawing import caption_line, freeze, friction_loop, new_figure
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import G
 from ..mechanics.summaries import model_specific
-from ..results import MODEL_TITLES, failure_of, has_structure
+from ..results import MODEL_TITLES, failure_of, friction_text, has_structure
 from .spec import layout
 
 #: how a model is drawn: its registry entry's ``line`` and ``marker``, else one of these
@@ -382,11 +382,17 @@ def _structure(col, ds):
     parts = (("_x", "-"), ("_y", "--")) if _bidirectional(ds) else (("", "-"),)
     for suffix, ls in parts:
         col[0].plot(t, factor * ds[f"stroke{suffix}"].values, color=STROKE_COLOUR, lw=1.2, ls=ls)
-        col[-1].plot(factor * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values, color=STROKE_COLOUR,
-                     lw=0.9, ls=ls)
+        if "friction_coefficient" in ds:  # a friction law: the loop coloured by μ (its range in the title)
+            friction_loop(col[-1], factor * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values,
+                          ds["friction_coefficient"].values, ls)
+        else:
+            col[-1].plot(factor * ds[f"stroke{suffix}"].values, ds[f"shear_ratio{suffix}"].values,
+                         color=STROKE_COLOUR, lw=0.9, ls=ls)
     col[-1].set_xlabel("stroke u (cm)")
-    col[-1].set_title(f"μ = {ds.attrs['structure_friction']:g}, ζ = {ds.attrs['structure_damping']:g}, "
-                      f"T = {ds.attrs['structure_period_s']:.3g} s", fontsize=8, loc="left")
+    mu = ds["friction_coefficient"].values if "friction_coefficient" in ds else None
+    coloured = "" if mu is None else f"\nloop coloured by μ, {np.min(mu):.3g} (violet) to {np.max(mu):.3g} (yellow)"
+    col[-1].set_title(f"{friction_text(ds.attrs)}, ζ = {ds.attrs['structure_damping']:g}, "
+                      f"T = {ds.attrs['structure_period_s']:.3g} s{coloured}", fontsize=8, loc="left")
 
 
 def _history_values(ds, name):
@@ -517,6 +523,8 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     return _complete(fig, title, caption, legend)
 
 
+#: how a summary's envelope over the friction's bounds is drawn (``combine.envelope``)
+ENVELOPE_LOOK = {"ls": (0, (4, 2)), "lw": 0.9}
 #: the statistics a suite's maps draw, in place of its records (``_suite_maps``): the design values of
 #: EN 1998-1 §4.3.3.4.3 from seven records on and from fewer (both defined wherever a record has a value)
 SUITE_MAPS = {"mean": "mean of the records", "max": "largest of the records"}
@@ -838,6 +846,9 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
             if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
                 for statistic, look in _suite_looks(style).items():
                     ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)), **look)
+            if f"{name}_envelope" in ds:  # the design demand: the largest over the friction's bounds
+                ax.axhline(factor * float(ds[f"{name}_envelope"].sel(model=model)), **ENVELOPE_LOOK,
+                           color=style["color"], zorder=style["zorder"] - 1)
         _failure_marks(ax, failures)
         _line_marks(ax, ds, name_axis, marks)
         ax.set_xticks(x, _shortened(names), rotation=30 if name_axis == "record" else 0,
@@ -845,8 +856,12 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
         ax.set_xlim(-0.6, len(names) - 0.4)
         ax.set_xlabel(_axis_label(ds, name_axis))
         _summary_axes(ax, ds, name, label, unit, models)
+    envelope = [[Line2D([], [], color="0.3", **ENVELOPE_LOOK, label="largest over the friction's bounds: the "
+                                                                   "design displacement and force (ASCE 7-22 "
+                                                                   "17.2.8.4, EN 15129)")]] \
+        if any(f"{name}_envelope" in ds for name, *_ in variables) else []
     return [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
-             for m in models]] + ([_suite_handles()] if "statistic" in ds.coords else []) + \
+             for m in models]] + ([_suite_handles()] if "statistic" in ds.coords else []) + envelope + \
         [_flag_handles(ds, models, drawn)]
 
 

@@ -11,6 +11,9 @@ redistributed, so the repository ships this deterministic stand-in with realisti
   exp(-3) ≈ 5 % at 20 s;
 * scaled to a peak ground acceleration of 0.35 g.
 
+``synthetic_v.AT2`` is its vertical component (line 2 ends ``UP``): the same recipe in a higher band,
+1-10 Hz (vertical motions carry higher frequencies), seed 2023, a peak of 0.25 g.
+
 ``synthetic_y.AT2`` is a second horizontal component for bidirectional studies (a record pair,
 ``file: [records/synthetic.AT2, records/synthetic_y.AT2]``, x then y): the same recipe, dt and
 NPTS with other random phases (seed 2022) and a peak of 0.30 g, so the pair shakes in both
@@ -46,10 +49,12 @@ NPTS = 2000
 PGA_G = 0.35
 SEED = 2021
 SEED_Y, PGA_G_Y = 2022, 0.30  # the y component
+SEED_V, PGA_G_V, F_V = 2023, 0.25, (1.0, 10.0)  # the vertical component: its seed, peak (g) and band (Hz)
 F_LO, F_HI, N_FREQ, F_CORNER = 0.3, 5.0, 200, 0.3  # Hz, Hz, -, Hz
 RISE, STRONG_END, DECAY = 2.0, 8.0, 3.0  # s, s, e-folds from STRONG_END to the end
 OUT = Path(__file__).with_name("synthetic.AT2")
 OUT_Y = Path(__file__).with_name("synthetic_y.AT2")
+OUT_V = Path(__file__).with_name("synthetic_v.AT2")
 
 
 def envelope(t):
@@ -58,12 +63,12 @@ def envelope(t):
     return np.where(t < RISE, (t / RISE) ** 2, np.where(t > STRONG_END, decay, 1.0))
 
 
-def synthetic_acceleration(seed=SEED, pga_g=PGA_G):
+def synthetic_acceleration(seed=SEED, pga_g=PGA_G, band=(F_LO, F_HI)):
     """(t, acceleration in g) of the synthetic record (default: ``synthetic.AT2``; ``seed=SEED_Y,
-    pga_g=PGA_G_Y``: ``synthetic_y.AT2``)."""
+    pga_g=PGA_G_Y``: ``synthetic_y.AT2``; ``SEED_V, PGA_G_V, F_V``: ``synthetic_v.AT2``)."""
     rng = np.random.default_rng(seed)
     t = DT * np.arange(NPTS)
-    f = np.linspace(F_LO, F_HI, N_FREQ)
+    f = np.linspace(*band, N_FREQ)
     amplitude = (f / F_CORNER) ** 2 / (1 + (f / F_CORNER) ** 2)
     phase = rng.uniform(0.0, 2 * np.pi, N_FREQ)
     noise = (amplitude[:, None] * np.sin(2 * np.pi * f[:, None] * t + phase[:, None])).sum(axis=0)
@@ -82,6 +87,11 @@ def main():
               f"PGV = {record.pgv:.3f} m/s, PGD = {record.pgd:.3f} m")
     pair = RecordPair.from_files([OUT, OUT_Y])
     print(f"pair: peak horizontal ground displacement |(x, y)| = {pair.pgd:.3f} m")
+    _, acc = synthetic_acceleration(SEED_V, PGA_G_V, F_V)
+    write_at2(OUT_V, DT, acc, title=f"SYNTHETIC ACCELEROGRAM, NOT A RECORDED MOTION: dccss make_synthetic.py, seed "
+                                    f"{SEED_V}, {F_V[0]}-{F_V[1]} Hz, PGA {PGA_G_V} g, UP",
+              database="dccss synthetic record (config/studies/records/make_synthetic.py)")
+    print(f"wrote {OUT_V}: the vertical component (UP), PGA = {np.max(np.abs(acc)):.3f} g")
 
 
 if __name__ == "__main__":
