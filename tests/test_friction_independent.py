@@ -41,6 +41,8 @@ from dccss.mechanics.structure import G, Structure, respond, solve
 from dccss.paper.prototypes import DFP1
 from dccss.records import Record, RecordPair
 
+pytestmark = pytest.mark.slow  # whole-record integrations by Radau: 2-11 s each
+
 RECORDS = "config/studies/records"
 L = float(DFP1.L)
 #: the reference's tolerances (relative; absolute, in m and m/s)
@@ -346,11 +348,10 @@ def test_the_reference_is_the_exact_solution_under_coulomb_friction():
 
 
 #: two components take the reference 6 to 11 s (one, 3 to 5 s): those are slow
-TWO = pytest.param(2, marks=pytest.mark.slow)
+TWO = 2
 
 
-@pytest.mark.parametrize(("components", "zeta"), [(1, 0.0), pytest.param(2, 0.0, marks=pytest.mark.slow),
-                                                  pytest.param(2, 0.05, marks=pytest.mark.slow)])
+@pytest.mark.parametrize(("components", "zeta"), [(1, 0.0), (2, 0.0), (2, 0.05)])
 def test_the_velocity_law_agrees_with_an_independent_integration(components, zeta):
     _compare(VELOCITY, components, zeta)
 
