@@ -259,7 +259,9 @@ def _case_summary(case, mapping) -> str:
     proto = mapping["prototype"] if isinstance(mapping["prototype"], str) else "a device of its own"
     excitation, times = case.excitation, step_times(case.excitation, case.dt)
     two = " (two components)" if excitation.components == 2 else ""
-    structure = f", a structure (friction {case.structure.friction:g})" if case.structure is not None else ""
+    structure = "" if case.structure is None else (
+        f", a structure (friction {case.structure.friction:g})" if isinstance(case.structure.friction, float) else
+        f", a structure (friction: the {' + '.join(law.name for law, _ in case.structure.laws)} law)")
     return (f"model {case.model}, prototype {proto}, {mapping['excitation']['kind']} excitation{two}{structure}, "
             f"t = {times[0]:g} .. {times[-1]:g} s by dt = {case.dt:g} s: {_steps(times.size)}")
 

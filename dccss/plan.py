@@ -295,8 +295,9 @@ def draw_structure(history, loop, ds, steps=(), letters=("e", "f")):
     for n in steps:
         history.axvline(t[n], color="0.5", lw=0.7, ls=":")
     a = ds.attrs
-    history.set_title(f"({letters[0]}) the structure on the device{chr(10) if twins else ' '}({friction_text(a)}, "
-                      f"ζ = {a['structure_damping']:g}, T = {a['structure_period_s']:.3g} s)", fontsize=9)
+    title = (f"({letters[0]}) the structure on the device ({friction_text(a)}, ζ = {a['structure_damping']:g}, "
+             f"T = {a['structure_period_s']:.3g} s)")
+    history.set_title(textwrap.fill(title, 64) if twins else title, fontsize=9)  # a law's text is longer
     history.set_xlabel("t (s)")
     history.set_ylabel("displacement (cm)")
     drawing.legend_on(history, *twins, **(BESIDE if not twins else {**BESIDE, "bbox_to_anchor": (1.2, 1.0)}))

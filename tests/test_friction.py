@@ -222,3 +222,19 @@ def test_a_bound_without_its_factor_is_named(tmp_path):
         _bounds_study(tmp_path, structure={"friction": 0.05, "property": {"lower": 0.8}})
     with pytest.raises(StudyError, match=r"sweep.property\[0\]: must be one of \['lower', 'nominal', 'upper'\]"):
         _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2"], "property": ["low"]})
+
+
+def test_dccss_check_and_run_name_the_law(tmp_path, capsys):
+    from dccss import cli
+
+    case = tmp_path / "case.yaml"
+    case.write_text(f"""prototype: DFP1
+excitation: {{kind: record, file: {Path(RECORDS).resolve()}/synthetic.AT2, scale: 2.0}}
+dt: 0.01
+model: compliant
+structure: {{friction: {{law: velocity, slow: 0.03, fast: 0.07, rate: 20.0}}, property: 1.3}}
+""")
+    assert cli.main(["check", str(case)]) == 0
+    assert "a structure (friction: the velocity law)" in capsys.readouterr().out
+    assert cli.main(["run", str(case), "-o", str(tmp_path / "out.nc")]) == 0
+    assert "structure (velocity law, mu = 0.039 at rest, lambda = 1.3" in capsys.readouterr().out
