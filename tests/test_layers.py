@@ -35,6 +35,9 @@ def imports(name):
             names = tuple(alias.name for alias in node.names)
             submodules = [f"{target}.{n}" for n in names if f"{target}.{n}" in MODULES]
             out += [(m, ()) for m in submodules] + [(target, tuple(n for n in names if f"{target}.{n}" not in MODULES))]
+        elif (isinstance(node, ast.Call) and getattr(node.func, "attr", getattr(node.func, "id", "")) == "import_module"
+              and node.args and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)):
+            out.append((node.args[0].value, ()))  # importlib.import_module("dccss...."): an import all the same
     return out
 
 
