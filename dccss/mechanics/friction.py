@@ -20,7 +20,8 @@ pressure (Pa), T its temperature (°C):
   (``speed_factor``); T is the temperature at the centre of the sliding plate, T0 plus the
   half-space solution for the frictional heat flux q = μ p v it receives while the slider covers
   it (|u_s| < r_c √π / 2): ΔT(t) = √(D / π) / k ∫ q(τ) / √(t − τ) dτ, q constant over each sample
-  interval (its mean over the interval, from the slide there), the integral exact for it:
+  interval of the record (its mean over the interval, from the slide there, whatever times are asked
+  for between the samples), the integral exact for it:
   ΔT(t_n) = (2 / k) √(D / π) Σ_j q_j (√(t_n − t_j) − √(t_n − t_j+1)). The temperature of an
   interval is the one at its start (the friction lags the heat by one interval, as OpenSees'
   element's lags by one step).

@@ -399,7 +399,8 @@ def solve(ground: Ground, times, L, mu, zeta, compiled=None, law=None) -> Respon
         u, v, z = u[:, :components], v[:, :components], z[:, :components]
         coefficient = np.full(u.shape[0], float(mu))
     else:
-        u, v, z, stick, temperature, coefficient = _plane(refined, omega, zeta, G, compiled, law)
+        u, v, z, stick, temperature, coefficient = _plane(refined, omega, zeta, G, compiled, law,
+                                                          np.isin(refined.time, ground.time))
         u, v, z = u[:, :components], v[:, :components], z[:, :components]
         temperature = temperature[:, :len(law)] if np.any(np.asarray(law)[:, 0] == 3.0) else None
     normal = refined.normal()
@@ -851,14 +852,16 @@ def _state(k, x0, x1, w0, w1, f0, f1, sliding, friction, u, v, z, stick):
         z[k, 0], z[k, 1] = d0 / size, d1 / size
 
 
-def plane(time, a0, a1, n0, n1, law, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u, v, z,
-          stick, heat, temperature, mu):
+def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol, A, B, C, E3, E5, K, y, out, trial, u,
+          v, z, stick, heat, temperature, mu):
     """The two-component history at the interval ends (the module docstring) into u, u̇, z (n, 2),
     sticking (n,), the surfaces' temperatures (n, 2) and the friction coefficient (n,), N/W on interval
     k being n0[k] + n1[k] (t - t_k) (0 where that is negative) and the friction ``friction`` times the
     law's coefficient (``law``: a row per surface, ``friction.row``; Coulomb's is 1 and ``friction``
-    its μ g); ``heat`` (n - 1, 2) holds the heat flux into each surface's plate over each interval:
-    (DONE, 0), or (CHATTER or FAILED, the interval where the run stopped)."""
+    its μ g); ``heat`` (n, 4) holds each heat interval's start, end and heat flux into each surface's
+    plate, a heat interval running from one of the record's samples to the next (``samples``: whether an
+    interval end is one, so that the heat does not depend on the times asked for between them): (DONE, 0),
+    or (CHATTER or FAILED, the interval where the run stopped)."""
     n = time.size
     w2, damp = omega * omega, 2 * zeta * omega
     x0, x1, w0, w1 = 0.0, 0.0, 0.0, 0.0
@@ -879,6 +882,7 @@ def plane(time, a0, a1, n0, n1, law, omega, zeta, friction, rtol, atol, A, B, C,
     _state(0, x0, x1, w0, w1, f0, f1, sliding, friction * rest * m, u, v, z, stick)
     mu[0] = rest
     h_next = 0.0  # the integrator's step, carried while the structure slides on
+    heated, since = 0, 0  # the heat intervals so far, and where the current one started
     for k in range(n - 1):
         h = time[k + 1] - time[k]
         tau, phases = 0.0, 0
@@ -943,7 +947,12 @@ def plane(time, a0, a1, n0, n1, law, omega, zeta, friction, rtol, atol, A, B, C,
             x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
         m = max(n0[k] + n1[k] * h, 0.0)
         if heats:
-            t0, t1 = _heated(k, time, u, x0, x1, max(n0[k] + n1[k] * 0.5 * h, 0.0), law, heat, temperature)
+            temperature[k + 1, 0], temperature[k + 1, 1] = t0, t1
+            if samples[k + 1] or k + 2 == n:  # the end of a heat interval
+                normal = max(0.5 * (n0[since] + m), 0.0)
+                t0, t1 = _heated(heated, time[since], time[k + 1], u[since, 0], u[since, 1], x0, x1, normal, law,
+                                 heat, temperature, k + 1)
+                heated, since = heated + 1, k + 1
         f0 = -(a0[k, 0] + a1[k, 0] * h) - w2 * m * x0
         f1 = -(a0[k, 1] + a1[k, 1] * h) - w2 * m * x1
         mu[k + 1] = device_mu(law, 0.0 if not sliding else math.sqrt(w0 * w0 + w1 * w1), m, t0, t1)
@@ -953,41 +962,43 @@ def plane(time, a0, a1, n0, n1, law, omega, zeta, friction, rtol, atol, A, B, C,
 
 
 @scalar.jit
-def _heated(k, time, u, x0, x1, normal, law, heat, temperature):
-    """The plates' temperatures at the end of interval k (the stroke there x0, x1; at its start u[k]) after
-    the heat flux of the interval, q = λ μ p v with its mean sliding speed v and N/W ``normal``, into each
-    surface's plate while the slider covers the plate's centre; the half-space's surface temperature for
-    a flux constant over each interval (the module docstring of ``friction``)."""
-    h = time[k + 1] - time[k]
-    d0, d1 = x0 - u[k, 0], x1 - u[k, 1]
-    c0, c1 = 0.5 * (x0 + u[k, 0]), 0.5 * (x1 + u[k, 1])
+def _heated(m, start, end, ux, uy, x0, x1, normal, law, heat, temperature, k):
+    """The plates' temperatures at ``end`` (time[k]) after heat interval m from ``start``, the stroke going
+    from (ux, uy) to (x0, x1): its heat flux q = λ μ p v (its mean sliding speed v, N/W ``normal``, the
+    plates' temperatures held over it, temperature[k]) into each surface's plate while the slider covers
+    the plate's centre; the half-space's surface temperature for a flux constant over each heat interval
+    (the module docstring of ``friction``)."""
+    h = end - start
+    d0, d1 = x0 - ux, x1 - uy
+    c0, c1 = 0.5 * (x0 + ux), 0.5 * (x1 + uy)
     moved, middle = math.sqrt(d0 * d0 + d1 * d1), math.sqrt(c0 * c0 + c1 * c1)
+    heat[m, 0], heat[m, 1] = start, end
     for s in range(len(law)):
         r = law[s]
         if r[0] != 3.0:
-            temperature[k + 1, s] = temperature[k, s]
             continue
         speed = r[2] * moved / h
         covered = r[2] * middle < r[16] * 0.8862269254527580  # √π / 2: the contact circle's equal square
-        heat[k, s] = r[3] * surface_mu(r, speed, normal, temperature[k, s]) * r[7] * normal * speed if covered else 0.0
+        heat[m, 2 + s] = r[3] * surface_mu(r, speed, normal, temperature[k, s]) * r[7] * normal * speed \
+            if covered else 0.0
         rise = 0.0
-        end = time[k + 1]
-        for j in range(k + 1):
-            rise += heat[j, s] * (math.sqrt(end - time[j]) - math.sqrt(end - time[j + 1]))
-        temperature[k + 1, s] = r[17] + 2.0 * math.sqrt(r[14] / math.pi) / r[15] * rise
-    return temperature[k + 1, 0], temperature[k + 1, 1]
+        for j in range(m + 1):
+            rise += heat[j, 2 + s] * (math.sqrt(end - heat[j, 0]) - math.sqrt(end - heat[j, 1]))
+        temperature[k, s] = r[17] + 2.0 * math.sqrt(r[14] / math.pi) / r[15] * rise
+    return temperature[k, 0], temperature[k, 1]
 
 
 #: the law of Coulomb friction in the kernels: a coefficient of exactly 1 times ``friction`` = μ g
 UNIT_LAW = np.array([[0.0, 1.0, 1.0, 1.0, 1.0] + [0.0] * (ROW - 5)])
 
 
-def _plane(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT_LAW):
+def _plane(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT_LAW, samples=None):
     """Two-component history at the interval ends (see the module docstring): u, u̇, z (n, 2), sticking,
     the plates' temperatures (n, 2) and the law's coefficient (n,); one component runs as the first of
     two, the second without load; ``friction`` is μ g for Coulomb friction (``law`` UNIT_LAW), g for a
-    law (its rows, ``friction.row``); ``compiled`` None: compiled for a long record (``backend``),
-    interpreted for a short one."""
+    law (its rows, ``friction.row``); ``samples`` whether each interval end is one of the record's samples
+    (default: all are), the ends of the plates' heat intervals; ``compiled`` None: compiled for a long
+    record (``backend``), interpreted for a short one."""
     from . import backend
 
     time, a0, a1 = ground.time, ground.a0, ground.a1
@@ -1007,11 +1018,12 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT_LAW):
         work = tuple(w.tolist() for w in work)
     u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     stick = np.zeros(n, dtype=bool)
-    heat, temperature, mu = np.zeros((max(n - 1, 1), 2)), np.zeros((n, 2)), np.zeros(n)
+    heat, temperature, mu = np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n)
+    samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
     law = np.ascontiguousarray(law, dtype=float) if compiled else np.asarray(law, dtype=float).tolist()
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
                     np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
-                    np.ascontiguousarray(n1, dtype=float), law, float(omega), float(zeta), float(friction),
+                    np.ascontiguousarray(n1, dtype=float), law, samples, float(omega), float(zeta), float(friction),
                     float(RTOL), float(ATOL), *_tableau(compiled), *work, u, v, z, stick, heat, temperature, mu)
     if status == CHATTER:
         raise _chatter(time[k])
