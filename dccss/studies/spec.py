@@ -437,17 +437,12 @@ def _axis_values(key, spec, known, symmetric):
                          f"sweep {PLATE3_FOLLOWS[key]} instead")
     if key == "record":
         return None  # read with the excitation (``record_entries``)
-    if key == "component":
+    if key in ("component", "property"):  # labels of a fixed set
+        allowed = COMPONENTS if key == "component" else BOUNDS
         if not isinstance(spec, list) or not spec:
-            raise StudyError(f"sweep.component: expected a non-empty list of {list(COMPONENTS)}, got {spec!r}")
+            raise StudyError(f"sweep.{key}: expected a non-empty list of {list(allowed)}, got {spec!r}")
         for i, label in enumerate(spec):
-            choice(label, f"sweep.component[{i}]", COMPONENTS)
-        return np.array(spec, dtype=str)
-    if key == "property":
-        if not isinstance(spec, list) or not spec:
-            raise StudyError(f"sweep.property: expected a non-empty list of {list(BOUNDS)}, got {spec!r}")
-        for i, label in enumerate(spec):
-            choice(label, f"sweep.property[{i}]", BOUNDS)
+            choice(label, f"sweep.{key}[{i}]", allowed)
         return np.array(spec, dtype=str)
     if key == "theta2_0":
         values = axis_values(spec, "sweep.theta2_0")
