@@ -69,7 +69,11 @@ def shipped_study(tmp_path_factory):
 
 
 def pytest_collection_modifyitems(items):
-    """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop)."""
+    """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop); on several
+    workers (pytest-xdist, ``--dist loadgroup``) the tests of one session-wide run go to one worker, which
+    runs it once."""
     for item in items:
-        if {"reproduction", "shipped_study"} & set(getattr(item, "fixturenames", ())):
+        shared = {"reproduction", "shipped_study"} & set(getattr(item, "fixturenames", ()))
+        if shared:
             item.add_marker(pytest.mark.slow)
+            item.add_marker(pytest.mark.xdist_group(sorted(shared)[0]))
