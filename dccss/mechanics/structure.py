@@ -867,8 +867,9 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
     x0, x1, w0, w1 = 0.0, 0.0, 0.0, 0.0
     # sticking holds while |f| <= μ g (N/W) (1 + rtol): a stop where the force equals the friction to
     # within the integration's own accuracy (as a Coulomb oscillator's last stop under a constant load)
-    # is not left to the rounding of the state there
-    hold = friction * (1.0 + rtol)
+    # is not left to the rounding of the state there (the law's coefficient multiplies ``friction`` first:
+    # Coulomb's μ g times 1 and g times a law's μ give the same bits)
+    hold = 1.0 + rtol
     heats = False  # a law whose friction follows the plates' temperatures
     for s in range(len(law)):
         temperature[0, s] = law[s][17]
@@ -877,7 +878,7 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
     m = max(n0[0], 0.0)
     rest = device_mu(law, 0.0, m, t0, t1)
     f0, f1 = -a0[0, 0], -a0[0, 1]
-    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > hold * rest * m
+    sliding = friction == 0.0 or math.sqrt(f0 * f0 + f1 * f1) > friction * rest * hold * m
     starting = sliding and friction > 0.0  # a start from rest, until |u̇| reaches START_SPEED
     _state(0, x0, x1, w0, w1, f0, f1, sliding, friction * rest * m, u, v, z, stick)
     mu[0] = rest
@@ -898,7 +899,7 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
                 # the breakaway value at the phase's start (it moves with N/W only under a pressure factor)
                 rest = device_mu(law, 0.0, max(m0, 0.0), t0, t1)
                 when = _breakaway(-b00 - w2 * m0 * x0, -b01 - w2 * m0 * x1, -b10 - w2 * m1 * x0, -b11 - w2 * m1 * x1,
-                                  hold * rest, m0, m1, end)
+                                  friction * rest * hold, m0, m1, end)
                 tau += when if when >= 0.0 else end
                 sliding = starting = when >= 0.0
                 h_next = 0.0
@@ -941,7 +942,7 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
                 m = _normal(when, load)
                 g0 = -(b00 + b10 * when) - w2 * m * x0
                 g1 = -(b01 + b11 * when) - w2 * m * x1
-                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > hold * device_mu(law, 0.0, m, t0, t1) * m
+                sliding = starting = math.sqrt(g0 * g0 + g1 * g1) > friction * device_mu(law, 0.0, m, t0, t1) * hold * m
                 h_next = 0.0
                 continue
             x0, x1, w0, w1, tau = y[0], y[1], y[2], y[3], h
