@@ -256,6 +256,20 @@ def test_fig18e_tells_the_coinciding_sticking_rotation_and_ground_velocity_apart
     assert ax.get_zorder() > tw.get_zorder() and not ax.patch.get_visible()
 
 
+# --- 4b. Figs. 11 and 12 (a): the ground motion drawn is the dataset's, sample for sample -------------------
+@pytest.mark.parametrize("figure", ["fig11", "fig12"])
+def test_figs_11_and_12_draw_the_datasets_ground_motion_at_its_times(runs, figure):
+    ds = runs["compliant"]
+    fig = render(SPECS[figure], [ds], "caption")
+    (ax,) = [a for a in fig.axes if a.get_title(loc="left").startswith("(a)")]
+    (tw,) = [a for a in fig.axes if a is not ax and a.bbox.bounds == ax.bbox.bounds]
+    (ground,), (velocity,) = ax.get_lines(), tw.get_lines()
+    t = ds["t"].values
+    for line, values in ((ground, ds["Xg"].values), (velocity, ds["Xg_dot"].values)):
+        np.testing.assert_array_equal(line.get_xdata(), t)
+        np.testing.assert_allclose(line.get_ydata(), 100 * values, rtol=1e-15, atol=0)
+
+
 # --- 5. the paper's symbols in titles as on the axes ------------------------------------------------------
 def _outside_math(text):
     return re.sub(r"\$[^$]*\$", "", text)
