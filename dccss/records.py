@@ -958,9 +958,10 @@ def read_components(paths, vertical=None, *, scale=1.0, window=None, baseline=No
     if pair_span not in PAIR_SPANS:
         raise ValueError(f"pair_span must be one of {list(PAIR_SPANS)}, got {pair_span!r}")
     raws = [read_raw(p, units) for p in paths] + ([read_raw(vertical, units)] if vertical is not None else [])
-    if vertical is not None and peer_azimuth(vertical) != "vertical" and peer_azimuth(vertical) is not None:
+    direction = peer_azimuth(vertical) if vertical is not None else None
+    if direction not in (None, "vertical"):
         raise ValueError(f"record {str(vertical)!r}: line 2 names a horizontal direction "
-                         f"({peer_azimuth(vertical):g} degrees); the vertical component is the file labelled UP, "
+                         f"({direction:g} degrees); the vertical component is the file labelled UP, "
                          f"DWN, V, UD or Z")
     windows = [window] * len(raws)
     if len(raws) > 1 and not all(np.array_equal(r.time, raws[0].time) for r in raws):
