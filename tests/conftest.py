@@ -68,6 +68,7 @@ def shipped_study(tmp_path_factory):
     return run
 
 
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook, which reads the groups
 def pytest_collection_modifyitems(items):
     """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop); on several
     workers (pytest-xdist, ``--dist loadgroup``) the tests of one session-wide run go to one worker, which
@@ -77,3 +78,16 @@ def pytest_collection_modifyitems(items):
         if shared:
             item.add_marker(pytest.mark.slow)
             item.add_marker(pytest.mark.xdist_group(sorted(shared)[0]))
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_finish(session):
+    """On a pytest-xdist worker under ``--dist loadgroup``, each grouped test's id must carry its group
+    (``...@reproduction``): otherwise every worker would run the same workflow (pytest 9.2 with
+    pytest-xdist 3.8 silently drops the groups; workflow/envs/constraints.txt pins a pair that works)."""
+    if getattr(session.config.option, "loadgroup", False) and hasattr(session.config, "workerinput"):
+        lost = [item.nodeid for item in session.items
+                if any(item.iter_markers("xdist_group")) and "@" not in item.nodeid]
+        if lost:
+            raise pytest.UsageError(f"pytest-xdist dropped the xdist_group of {len(lost)} tests (e.g. {lost[0]}); "
+                                    "install the versions in workflow/envs/constraints.txt")
