@@ -85,7 +85,8 @@ def test_every_tutorial_block_runs_or_says_why_not():
     assert unrunnable == []
 
 
-@pytest.mark.parametrize("page", sorted(p.name for p in (DOCS / "tutorials").glob("*.md")))
+@pytest.mark.parametrize("page", [pytest.param(p.name, marks=[pytest.mark.slow] if p.name == "one-case.md" else [])
+                                  for p in sorted((DOCS / "tutorials").glob("*.md"))])  # one-case: 4 commands, 8 s
 def test_tutorial_runs(page, tmp_path):
     """A tutorial's files are written and its commands and Python run, in order, in an empty folder."""
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",

@@ -166,6 +166,7 @@ def _speed_law(name):
     return respond(Ground.from_samples(t, a), t, DFP1, Structure(SPEED_LAWS[name][1]))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(SPEED_LAWS))
 def test_speed_laws_against_singleFPBearing(name):
     """OpenSees - dccss = (OpenSees - model) + (the normal-force law's share) + (the elastic branch's)."""

@@ -2,6 +2,7 @@
 import nothing above them, and no module uses another's private names or matplotlib's."""
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -17,6 +18,7 @@ def module_name(path):
 MODULES = {module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
 
 
+@functools.cache
 def imports(name):
     """(imported module, names taken from it) for every import statement of module ``name``, at any depth."""
     path = MODULES[name]
@@ -38,9 +40,10 @@ def imports(name):
         elif (isinstance(node, ast.Call) and getattr(node.func, "attr", getattr(node.func, "id", "")) == "import_module"
               and node.args and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)):
             out.append((node.args[0].value, ()))  # importlib.import_module("dccss...."): an import all the same
-    return out
+    return tuple(out)
 
 
+@functools.cache
 def internal_graph():
     return {name: {target for target, _ in imports(name) if target in MODULES and target != name} for name in MODULES}
 

@@ -267,6 +267,7 @@ def _pair_response(scale=1.5, mu=0.04, zeta=0.02):
     return np.column_stack([r.stroke, r.velocity, r.z, r.sticking])
 
 
+@pytest.mark.slow
 def test_the_two_component_response_does_not_depend_on_the_processors_blas(monkeypatch):
     """No BLAS in the two-component integration (whose kernels OpenBLAS chooses by processor): the
     same bits under OpenBLAS' oldest kernels (Katmai) in another process."""
