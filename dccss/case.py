@@ -85,8 +85,7 @@ from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .mechanics.structure import FRICTION_ON, Structure, StructureError
 from .paper.prototypes import TABLE1
 from .schema import errors as schema_errors
-from .schema import schema
-from .simulation import simulate
+from .schema import load_yaml, schema
 
 #: a case file's keys, the defaults of the optional ones and each excitation kind's keys: the schema
 #: dccss/schemas/case.schema.yaml, which every case is also held to
@@ -495,6 +494,8 @@ class Case:
 
     def run(self, progress=None):
         """Simulate the case: an xarray.Dataset (``progress(n, N)``: as ``simulate``'s)."""
+        from .simulation import simulate  # xarray: not imported to read and check a case (the workflow's DAG)
+
         attrs = {"case_id": self.id or "", "case_parameters_sha256": self.parameters_hash or ""}
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
@@ -599,7 +600,7 @@ def read_yaml(path, what="file"):
     if not path.is_file():
         raise CaseError(f"{what} {str(path)!r} does not exist")
     try:
-        return yaml.safe_load(path.read_text())
+        return load_yaml(path.read_text())
     except yaml.YAMLError as err:
         raise CaseError(f"{what} {str(path)!r} is not valid YAML: {err}") from None
 

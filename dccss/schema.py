@@ -24,10 +24,19 @@ TYPE_NAMES = {"number": "a number", "integer": "an integer", "string": "a string
               "object": "a mapping", "boolean": "true or false", "null": "empty"}
 
 
+#: PyYAML's safe loader, its C implementation (libyaml, about 10 times faster) where installed: the same data
+SAFE_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+
+def load_yaml(stream):
+    """``yaml.safe_load`` of a string or an open file, by ``SAFE_LOADER``."""
+    return yaml.load(stream, Loader=SAFE_LOADER)  # noqa: S506 (a safe loader)
+
+
 @cache
 def schema(name) -> dict:
     """The schema ``dccss/schemas/<name>.schema.yaml``."""
-    return yaml.safe_load(files("dccss").joinpath("schemas", f"{name}.schema.yaml").read_text(encoding="utf-8"))
+    return load_yaml(files("dccss").joinpath("schemas", f"{name}.schema.yaml").read_text(encoding="utf-8"))
 
 
 def _retrieve(uri):

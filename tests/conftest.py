@@ -1,6 +1,8 @@
 """Shared fixtures: a full reproduction of the paper in a temporary copy of the project."""
 
 import copy
+import inspect
+import re
 import shutil
 import subprocess
 import sys
@@ -68,16 +70,40 @@ def shipped_study(tmp_path_factory):
     return run
 
 
+def _shared_runs(item):
+    """The session-wide runs a test uses: "reproduction", and "study:<name>" for each shipped study it runs
+    (its ``name`` parameter, or the names in its ``shipped_study("...")`` calls; "study:?" if neither says)."""
+    names = set(getattr(item, "fixturenames", ()))
+    runs = {"reproduction"} & names
+    if "shipped_study" in names:
+        callspec = getattr(item, "callspec", None)
+        studies = {callspec.params["name"]} if callspec and "name" in callspec.params else set(
+            re.findall(r"shipped_study\(\s*[\"']([\w-]+)[\"']", inspect.getsource(item.function)))
+        runs |= {f"study:{name}" for name in studies} or {"study:?"}
+    return runs
+
+
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook, which reads the groups
 def pytest_collection_modifyitems(items):
-    """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop); on several
-    workers (pytest-xdist, ``--dist loadgroup``) the tests of one session-wide run go to one worker, which
-    runs it once."""
-    for item in items:
-        shared = {"reproduction", "shipped_study"} & set(getattr(item, "fixturenames", ()))
-        if shared:
+    """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop). On several
+    workers (pytest-xdist, ``--dist loadgroup``) the tests of one session-wide run (the reproduction, or
+    one shipped study) go to one worker, which runs it once; tests using several runs join their groups."""
+    used = {item: _shared_runs(item) for item in items}
+    group = {}  # run -> a representative run (union-find over the runs tests use together)
+
+    def find(run):
+        while group.setdefault(run, run) != run:
+            run = group[run]
+        return run
+
+    for runs in used.values():
+        first, *rest = sorted(runs) or [None]
+        for run in rest:
+            group[find(run)] = find(first)
+    for item, runs in used.items():
+        if runs:
             item.add_marker(pytest.mark.slow)
-            item.add_marker(pytest.mark.xdist_group(sorted(shared)[0]))
+            item.add_marker(pytest.mark.xdist_group(find(sorted(runs)[0]).replace(":", "_").replace("?", "any")))
 
 
 @pytest.hookimpl(trylast=True)

@@ -256,7 +256,7 @@ def test_a_case_without_solution_is_marked_and_the_study_completes(tmp_path):
     history = xr.open_dataset(work / "results/studies/tiny/histories/stick_slip_0.nc")
     assert history.attrs["failed"] == 1 and history.attrs["failure_time_s"] == pytest.approx(0.16)
     assert float(history["t"][-1]) == pytest.approx(0.15) and "reduce dt" in history.attrs["failure_message"]
-    assert "did not converge in sticking" in (work / "logs/studies/tiny/history_stick_slip_0.log").read_text()
+    assert "did not converge in sticking" in (work / "logs/studies/tiny/histories_stick_slip.log").read_text()
     assert "1 failed" in (work / "logs/studies/tiny/stick_slip_1.log").read_text()
     assert (work / "figures/studies/tiny/histories.png").exists()
 

@@ -38,10 +38,9 @@ import json
 from dataclasses import dataclass
 
 import numpy as np
-import yaml
 
 from ..schema import errors as schema_errors
-from ..schema import schema
+from ..schema import load_yaml, schema
 
 #: factor from the SI unit of the quantity's dimension to the unit
 UNITS = {"m": 1.0, "cm": 1e2, "mm": 1e3, "um": 1e6, "deg": 1.0, "cm/s": 1e2, "1": 1.0, "bool": 1.0,
@@ -440,7 +439,7 @@ def load_values(path, catalogue: Catalogue) -> PaperValues:
         Listing every mistake, each naming its entry id.
     """
     with open(path) as f:
-        data = yaml.safe_load(f)
+        data = load_yaml(f)
     problems = schema_errors("paper_values", data)  # the file's structure: dccss/schemas/paper_values.schema.yaml
     top = [p for p in problems if len(p.owner) < 2]
     if top:

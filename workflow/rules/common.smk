@@ -138,25 +138,28 @@ def all_breakaway():
     return [breakaway_path(proto, normals) for proto in config["prototypes"] for normals in spec["normals"]]
 
 
+def model_cases():
+    """(case set, prototype, dt) of every simulation of each model, in the order of its files."""
+    return [(case_set, proto, dt) for case_set, spec in config["case_sets"].items() for proto in spec["cases"]
+            for dt in config["dt"]]
+
+
 def case_mappings(wildcards):
-    """The dccss case mappings (see dccss.case) of a case set, prototype and model, one per dt."""
-    return [case_mapping(wildcards, dt) for dt in config["dt"]]
+    """The dccss case mappings (see dccss.case) of one model: every case set, prototype and dt."""
+    return [case_mapping(case_set, proto, wildcards.model, dt) for case_set, proto, dt in model_cases()]
 
 
-def case_mapping(wildcards, dt):
+def case_mapping(case_set, proto, model, dt):
     """The dccss case mapping of one simulation."""
-    cases = config["case_sets"][wildcards.case_set]["cases"]
-    if wildcards.proto not in cases:
-        raise WorkflowError(f"config: case_sets.{wildcards.case_set}.cases: no prototype {wildcards.proto!r}")
-    spec = cases[wildcards.proto]
+    spec = config["case_sets"][case_set]["cases"][proto]
     case = {
-        "id": f"{wildcards.case_set}/{wildcards.proto}_{wildcards.model}_dt{dt_label(dt)}",
-        "prototype": config["prototypes"][wildcards.proto],
+        "id": f"{case_set}/{proto}_{model}_dt{dt_label(dt)}",
+        "prototype": config["prototypes"][proto],
         "excitation": {"kind": "sine", "amplitude": spec["amplitude"], "omega": config["omega"],
                        "duration": config["duration"]},
         "theta2_0": spec["theta2_0"],
         "dt": dt,
-        "model": wildcards.model,
+        "model": model,
         "normals": spec["normals"],
     }
     if "newton" in config:
@@ -164,15 +167,12 @@ def case_mapping(wildcards, dt):
     return case
 
 
-def breakaway_params(wildcards):
+def breakaway_params():
+    """The Fig. 7 sweeps, one per prototype and normal convention, in the order of all_breakaway()."""
     spec = config["breakaway"]
-    return {
-        "prototype": config["prototypes"][wildcards.proto],
-        "theta2_0": breakaway_theta2_0(spec["theta2_0"]),
-        "dXg": spec["dXg"],
-        "normals": wildcards.normals,
-        "newton": config.get("newton", {}),
-    }
+    return [{"prototype": config["prototypes"][proto], "theta2_0": breakaway_theta2_0(spec["theta2_0"]),
+             "dXg": spec["dXg"], "normals": normals, "newton": config.get("newton", {})}
+            for proto in config["prototypes"] for normals in spec["normals"]]
 
 
 def all_targets():

@@ -41,22 +41,25 @@ rule study_combine:
         "../scripts/study_combine.py"
 
 
-rule study_history:
-    input:
-        lambda w: study_files(STUDY.histories[int(w.i)].get("record")),
-    output:
-        "results/studies/{study}/histories/{model}_{i}.nc",
-    params:
-        script=script_hash("study_history.py"),
-        study_dir=str(STUDY_FILE.parent),
-        case=lambda w: history_mapping(STUDY, int(w.i), w.model),
-        library=COMPUTE_SOURCE,
-    log:
-        "logs/studies/{study}/history_{model}_{i}.log",
-    conda:
-        "../envs/dccss.yaml"
-    script:
-        "../scripts/study_history.py"
+# every history of a model in one job: a history takes 0.1-0.5 s, a job's start and imports about 0.6 s
+if STUDY.histories:
+
+    rule study_history:
+        input:
+            lambda w: sorted({f for point in STUDY.histories for f in study_files(point.get("record"))}),
+        output:
+            [f"results/studies/{{study}}/histories/{{model}}_{i}.nc" for i in range(len(STUDY.histories))],
+        params:
+            script=script_hash("study_history.py"),
+            study_dir=str(STUDY_FILE.parent),
+            cases=lambda w: [history_mapping(STUDY, i, w.model) for i in range(len(STUDY.histories))],
+            library=COMPUTE_SOURCE,
+        log:
+            "logs/studies/{study}/histories_{model}.log",
+        conda:
+            "../envs/dccss.yaml"
+        script:
+            "../scripts/study_history.py"
 
 
 rule study_plots:

@@ -1,4 +1,4 @@
-"""Snakemake adapter: one Fig. 7 breakaway sweep -> one netCDF dataset."""
+"""Snakemake adapter: the Fig. 7 breakaway sweeps -> one netCDF dataset each."""
 
 import numpy as np
 from _log import logged
@@ -7,9 +7,10 @@ from dccss import NewtonOptions, breakaway
 from dccss.case import geometry_from, parameters_hash
 from dccss.files import write_netcdf
 
-sweep = snakemake.params.sweep
 with logged(snakemake.log[0]):
-    ds = breakaway(geometry_from(sweep["prototype"]), np.radians(sweep["theta2_0"]), sweep["dXg"],
-                   normals=sweep["normals"], options=NewtonOptions(**sweep["newton"]),
-                   attrs={"case_id": snakemake.output[0], "case_parameters_sha256": parameters_hash(sweep)})
-    write_netcdf(ds, snakemake.output[0])
+    for sweep, path in zip(snakemake.params.sweeps, snakemake.output):
+        ds = breakaway(geometry_from(sweep["prototype"]), np.radians(sweep["theta2_0"]), sweep["dXg"],
+                       normals=sweep["normals"], options=NewtonOptions(**sweep["newton"]),
+                       attrs={"case_id": path, "case_parameters_sha256": parameters_hash(sweep)})
+        write_netcdf(ds, path)
+        print(f"{path}: {ds.sizes}")

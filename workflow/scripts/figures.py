@@ -1,4 +1,4 @@
-"""Snakemake adapter: the datasets of a group of figures -> their PNG and PDF files."""
+"""Snakemake adapter: the datasets of a group of figures -> their PNG and PDF files, in every variant."""
 
 from _log import logged
 
@@ -8,7 +8,9 @@ from dccss.results import load
 
 with logged(snakemake.log[0]):
     files = {f: load(f) for f in snakemake.input}
-    paths = snakemake.params.datasets
-    for (fig, entry), png, pdf in zip(snakemake.params.figures.items(), snakemake.output.png, snakemake.output.pdf):
-        save(render(figure_spec(fig, entry), [files[p] for p in paths[fig]], snakemake.params.caption), png, pdf)
+    figures = snakemake.params.figures
+    drawn = [(variant, fig) for variant in snakemake.params.variants for fig in figures]
+    for (variant, fig), png, pdf in zip(drawn, snakemake.output.png, snakemake.output.pdf, strict=True):
+        save(render(figure_spec(fig, figures[fig]), [files[p] for p in variant["datasets"][fig]], variant["caption"]),
+             png, pdf)
         print(f"{fig}: {png}, {pdf}")

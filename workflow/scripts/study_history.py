@@ -1,4 +1,4 @@
-"""Snakemake adapter: one chosen case of a study, run in full -> its time-history dataset."""
+"""Snakemake adapter: the chosen cases of a study under one model, each run in full -> its time-history dataset."""
 
 from pathlib import Path
 
@@ -9,9 +9,10 @@ from dccss.cli import warnings_of
 from dccss.files import write_netcdf
 
 with logged(snakemake.log[0]):
-    case = case_from(snakemake.params.case, Path(snakemake.params.study_dir))
-    ds = case.run()
-    write_netcdf(ds, snakemake.output[0])
-    for line in warnings_of(ds):
-        print(f"warning: {line}")
-    print(f"{case.id}: {ds.sizes['t'] - 1} steps -> {snakemake.output[0]}")
+    for mapping, path in zip(snakemake.params.cases, snakemake.output, strict=True):
+        case = case_from(mapping, Path(snakemake.params.study_dir))
+        ds = case.run()
+        write_netcdf(ds, path)
+        for line in warnings_of(ds):
+            print(f"warning: {line}")
+        print(f"{case.id}: {ds.sizes['t'] - 1} steps -> {path}")
