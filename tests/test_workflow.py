@@ -75,11 +75,13 @@ def test_rerun_does_nothing_and_deleting_reruns_dependents(reproduction):
             parts = line.split()
             if len(parts) == 2 and parts[1].isdigit():
                 counts[parts[0]] = int(parts[1])
-        # the model's simulations (one job writes them all), its figures (one job draws both variants), its
-        # animation (and its page in the report), the validation (and its page); nothing else: not the other
-        # model's simulations, figures or animations, nor the breakaway sweeps or their figures
-        assert counts == {"simulate": 1, "figures_compliant": 1, "animate": 1, "report_animation": 1, "validate": 1,
-                          "check_validation": 1, "report_validation": 1, "all": 1, "total": 8}, out
+        # the prototype's simulations in its case set (one job writes both models and both dt), the figures
+        # that draw them (a job per group draws both variants), its animation (Fig. 20b's steps, and its page
+        # in the report), the validation (and its page); nothing else: not DFP1's or the other case set's
+        # simulations, DFP1's animations, the breakaway sweeps or their figures
+        assert counts == {"simulate": 1, "figures_compliant": 1, "figures_stick_slip": 1, "animate": 1,
+                          "report_animation": 1, "validate": 1, "check_validation": 1, "report_validation": 1,
+                          "all": 1, "total": 9}, out
     finally:  # the later tests read the complete reproduction
         assert snakemake(reproduction).returncode == 0
 
@@ -121,7 +123,7 @@ def test_a_library_change_reruns_what_it_affects(reproduction, tmp_path):
     newton = package / "mechanics" / "newton.py"
     newton.write_text(newton.read_text() + "\nSOLVER_EDITED = True\n")
     jobs = planned()
-    assert jobs["simulate"] == 2 and jobs["breakaway"] == 1 and jobs["validate"] == 1  # a job per model; one
+    assert jobs["simulate"] == 4 and jobs["breakaway"] == 2 and jobs["validate"] == 1  # per case set and prototype
     newton.write_text(newton.read_text().replace("\nSOLVER_EDITED = True\n", ""))
     assert planned() == {}
     drawing = package / "drawing.py"

@@ -138,15 +138,12 @@ def all_breakaway():
     return [breakaway_path(proto, normals) for proto in config["prototypes"] for normals in spec["normals"]]
 
 
-def model_cases():
-    """(case set, prototype, dt) of every simulation of each model, in the order of its files."""
-    return [(case_set, proto, dt) for case_set, spec in config["case_sets"].items() for proto in spec["cases"]
-            for dt in config["dt"]]
-
-
 def case_mappings(wildcards):
-    """The dccss case mappings (see dccss.case) of one model: every case set, prototype and dt."""
-    return [case_mapping(case_set, proto, wildcards.model, dt) for case_set, proto, dt in model_cases()]
+    """The dccss case mappings (see dccss.case) of one prototype in one case set: each model, each dt."""
+    if wildcards.proto not in config["case_sets"][wildcards.case_set]["cases"]:
+        raise WorkflowError(f"config: case_sets.{wildcards.case_set}.cases: no prototype {wildcards.proto!r}")
+    return [case_mapping(wildcards.case_set, wildcards.proto, model, dt) for model in config["models"]
+            for dt in config["dt"]]
 
 
 def case_mapping(case_set, proto, model, dt):
@@ -167,12 +164,12 @@ def case_mapping(case_set, proto, model, dt):
     return case
 
 
-def breakaway_params():
-    """The Fig. 7 sweeps, one per prototype and normal convention, in the order of all_breakaway()."""
+def breakaway_params(wildcards):
+    """The Fig. 7 sweeps of one prototype, one per normal convention."""
     spec = config["breakaway"]
-    return [{"prototype": config["prototypes"][proto], "theta2_0": breakaway_theta2_0(spec["theta2_0"]),
+    return [{"prototype": config["prototypes"][wildcards.proto], "theta2_0": breakaway_theta2_0(spec["theta2_0"]),
              "dXg": spec["dXg"], "normals": normals, "newton": config.get("newton", {})}
-            for proto in config["prototypes"] for normals in spec["normals"]]
+            for normals in spec["normals"]]
 
 
 def all_targets():
