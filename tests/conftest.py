@@ -1,5 +1,6 @@
 """Shared fixtures: a full reproduction of the paper in a temporary copy of the project."""
 
+import bisect
 import copy
 import inspect
 import re
@@ -27,6 +28,20 @@ def changed(mapping, **changes):
         else:
             target[last] = value
     return out
+
+def scalar_at(ground, component=0):
+    """``s -> ground.at([s])[0, component]`` in plain floats, bit for bit, and about 20 times faster: for the
+    independent integrations, which call it at every right-hand side."""
+    times = ground.time.tolist()
+    a0, a1 = ground.a0[:, component].tolist(), ground.a1[:, component].tolist()
+    first, last, top = times[0], times[-1], len(a0) - 1
+
+    def at(s):
+        k = min(max(bisect.bisect_right(times, s) - 1, 0), top)
+        return a0[k] + a1[k] * (min(max(s, first), last) - times[k])
+
+    return at
+
 
 ROOT = Path(__file__).resolve().parents[1]
 PROJECT = ["Snakefile", "config", "workflow", "profiles"]

@@ -6,6 +6,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from conftest import scalar_at
 
 from dccss.case import case_from
 from dccss.checks import CaseError
@@ -120,8 +121,7 @@ def _reference_line(t, acc, mu, zeta):
     ground = Ground.from_samples(t, acc)
     omega, f = OMEGA, mu * G
 
-    def a_g(s):
-        return ground.at(np.array([s]))[0, 0]
+    a_g = scalar_at(ground)
 
     u, v, out, sticking = 0.0, 0.0, [0.0], True
     now = t[0]
@@ -156,6 +156,15 @@ def _reference_line(t, acc, mu, zeta):
                 sign = np.sign(demand)
         out.append(u)
     return np.array(out)
+
+
+def test_the_independent_integrations_read_the_ground_as_the_library_does():
+    """``conftest.scalar_at`` (the references' fast ground) equals ``Ground.at`` bit for bit, outside the span too."""
+    rec = _record()
+    ground = Ground.from_samples(rec.time, rec.acceleration)
+    probe = np.concatenate([[-1.0, rec.time[-1] + 1.0], rec.time, np.random.default_rng(5).uniform(-0.1, 10.1, 2000)])
+    at = scalar_at(ground)
+    assert np.array_equal([at(float(s)) for s in probe], ground.at(probe)[:, 0])
 
 
 @pytest.mark.slow

@@ -27,7 +27,7 @@ try:
 except (ImportError, RuntimeError) as err:  # openseespy raises RuntimeError where BLAS/LAPACK are missing
     raise ImportError("openseespy is a test dependency (pip install -e '.[test]'); on Linux it needs the "
                       "libblas3 and liblapack3 packages (bash .ci/system-libraries.sh)") from err
-from conftest import ROOT
+from conftest import ROOT, scalar_at
 from scipy.integrate import solve_ivp
 
 from dccss.mechanics.geometry import Geometry
@@ -131,8 +131,7 @@ def _oracle(t, acc, mu, normal_force=True):
     OpenSees' normal force N = W + F u / R (``normal_force``) or dccss's N = W."""
     ground = Ground.from_samples(t, acc)
 
-    def a_g(s):
-        return ground.at(np.array([s]))[0, 0]
+    a_g = scalar_at(ground)
 
     def sliding_force(u, sign):  # F / m
         r = u / L
