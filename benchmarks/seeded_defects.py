@@ -7,7 +7,7 @@ into a scratch folder, runs the quick loop there once unmutated (it must pass), 
 applies the mutation, runs the quick loop again and restores the file (its bytes and its time stamp,
 so that Python's and Numba's caches of the unmutated sources stay valid):
 
-    <python> -m pytest -m "not slow" -x -q -p no:cacheprovider -n <workers>
+    <python> -m pytest -m "not slow" -x -q -p no:cacheprovider -n <workers> --dist worksteal
 
 in the scratch folder, with the scratch folder first on PYTHONPATH (the development install of
 dccss points at the main checkout; the script checks that ``dccss`` imports from the scratch copy).
@@ -209,7 +209,7 @@ def quick_loop(tree: Path, python: str, workers: int, timeout: float) -> Outcome
     """The quick loop in ``tree``: pytest's exit code, the time, the first failing test and the output."""
     command = [python, "-m", "pytest", "-m", "not slow", "-x", "-q", "-p", "no:cacheprovider"]
     if workers:
-        command += ["-n", str(workers)]
+        command += ["-n", str(workers), "--dist", "worksteal"]
     start = time.perf_counter()
     process = subprocess.Popen(command, cwd=tree, env=environment(tree), stdout=subprocess.PIPE,
                                stderr=subprocess.STDOUT, text=True, start_new_session=True)
@@ -303,7 +303,7 @@ def main(argv=None) -> int:
     print()
     print(table(base, rows))
     print(f"\ntotal {time.perf_counter() - began:.0f} s, {len(rows)} defects, quick loop: pytest -m 'not slow' -x -q "
-          f"-p no:cacheprovider{f' -n {args.workers}' if args.workers else ''}")
+          f"-p no:cacheprovider{f' -n {args.workers} --dist worksteal' if args.workers else ''}")
     verdicts = [verdict(o) for _, o in rows]
     if "error" in verdicts:
         return 2

@@ -56,6 +56,8 @@ def bodies(path: Path) -> dict[str, str]:
 
 
 def group_of(module: str, name: str, sources: dict) -> str:
+    if "@reproduction" in name or "@study_" in name:  # pytest-xdist's group of a session-wide run
+        return "Snakemake"
     if module.endswith("_opensees"):
         return "OpenSees"
     body = sources.setdefault(module, bodies(ROOT / "tests" / f"{module}.py")).get(name.split("[")[0], "")
