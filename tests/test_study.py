@@ -187,9 +187,13 @@ def test_dt_axis_runs_each_step_size_as_its_own_batch():
     assert mapping["dt"] == 0.005 and mapping["on_failure"] == "mark" and mapping["capacity"] == "continue"
 
 
-def test_auto_chunks_keep_both_cores_busy():
-    study = Study.from_config(tiny(chunk_size=None, sweep__alpha21={"start": 8.0, "stop": 10.0, "num": 5}))
-    assert study.grid.n_cases == 15 and [len(study.grid.chunk(k)) for k in range(study.grid.n_chunks)] == [4, 4, 4, 3]
+@pytest.mark.parametrize(("cases", "chunks"), [(15, [15]), (16, [16]), (40, [16, 16, 8]), (64, [16] * 4),
+                                               (100, [25] * 4), (101, [26, 26, 26, 23])])
+def test_auto_chunks_are_a_quarter_of_the_sweep_of_at_least_sixteen_cases(cases, chunks):
+    """Four jobs keep both cores busy; a job of fewer than 16 small cases costs more to start than to run."""
+    study = Study.from_config(tiny(chunk_size=None, sweep__h2=[0.15], sweep__alpha21={"start": 8.0, "stop": 10.0,
+                                                                                      "num": cases}))
+    assert study.grid.n_cases == cases and [len(study.grid.chunk(k)) for k in range(study.grid.n_chunks)] == chunks
 
 
 def test_history_mapping_is_a_case_with_the_points_scale():

@@ -25,7 +25,7 @@ A study file (schema: ``dccss/schemas/study.schema.yaml``, which the workflow ap
     sweep:                       # each axis a list or {start, stop, num} (linspace)
       alpha21: {start: 4.0, stop: 14.0, num: 21}
       h2: [0.08, 0.10, 0.12]
-    chunk_size: auto             # cases per job: auto (default) splits each model's sweep in 4 jobs
+    chunk_size: auto             # cases per job: auto (default) splits each model's sweep in 4 jobs of 16 cases or more
     on_failure: mark             # a case the solver fails on: mark it (NaN, flag) or error (stop the study)
     capacity: continue           # the pad reaches a ring: continue (flag), stop (end there) or error
     marks: {DFP1: {alpha21: 10.0, h2: 0.15}}        # points drawn on the maps

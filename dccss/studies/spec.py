@@ -45,9 +45,11 @@ REQUIRED = tuple(schema("study")["required"])
 DEFAULTS = {k: v["default"] for k, v in schema("study")["properties"].items() if "default" in v}
 #: the keys that only the plots and the histories read: the sweep's results do not depend on them
 NOT_SWEPT = ("marks", "histories", "animate")
-#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log); with a
-#: record axis, "auto" is a chunk per record
+#: chunks per model when chunk_size is "auto" (both cores busy, progress in every chunk's log), each of at
+#: least AUTO_LEAST cases (a job's start and imports cost about as much as 5-20 small cases); with a record
+#: axis, "auto" is a chunk per record
 AUTO_CHUNKS = 4
+AUTO_LEAST = 16
 
 
 class StudyError(CaseError):
@@ -570,7 +572,7 @@ def _check_frictions(grid):
 def _chunk_size(chunk, axes) -> int:
     if chunk == "auto":  # with a record axis, a chunk per record (its jobs then depend on it alone)
         others = int(np.prod([len(v) for k, v in axes.items() if k != "record"]))
-        return others if "record" in axes else -(-others // AUTO_CHUNKS)
+        return others if "record" in axes else max(-(-others // AUTO_CHUNKS), min(others, AUTO_LEAST))
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise StudyError(f"chunk_size: expected an integer >= 1 or 'auto', got {chunk!r}")
     return chunk
