@@ -16,7 +16,7 @@ time (setup, call and teardown, as pytest reports it) by what the test starts, t
 The sum over the tests is the CPU-bound work the workers share: on n workers the wall time is at least
 that sum / n, plus each worker's start and collection.
 
-Usage: python benchmarks/test_time.py [--xml report.xml] [--top N] [-- pytest arguments]
+Usage: python benchmarks/test_time.py [--xml report.xml | --save report.xml] [--top N] [-- pytest arguments]
 """
 
 from __future__ import annotations
@@ -68,13 +68,14 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--xml", type=Path, help="a JUnit report to read instead of running the tests")
     parser.add_argument("--top", type=int, default=15, help="also list the N slowest tests")
+    parser.add_argument("--save", type=Path, help="keep the JUnit report of the run there")
     parser.add_argument("pytest_args", nargs="*", default=["-n", "auto", "--dist", "loadgroup"])
     args = parser.parse_args(argv)
     wall = None
     with tempfile.TemporaryDirectory() as tmp:
         xml = args.xml
         if xml is None:
-            xml = Path(tmp) / "report.xml"
+            xml = args.save or Path(tmp) / "report.xml"
             start = time.perf_counter()
             subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", f"--junitxml={xml}",
                             *args.pytest_args], cwd=ROOT, check=False)
