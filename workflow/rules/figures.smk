@@ -5,6 +5,7 @@ for group, figs in FIGURE_GROUPS.items():
     rule:
         name:
             f"figures_{group}"
+        priority: 1  # the longest jobs (4-6 s) first, the animations (1.5-4 s) fill the end
         input:
             lambda w, group=group: sorted({p for v in group_variants(group) for p in figure_inputs(group, v)}),
         output:
@@ -32,7 +33,7 @@ for group, figs in FIGURE_GROUPS.items():
 
 
 rule animate:
-    priority: 1  # the longest jobs first
+    priority: 0
     input:
         animation_input,
     output:
