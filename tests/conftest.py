@@ -112,13 +112,12 @@ def pytest_collection_modifyitems(items):
         return run
 
     for runs in used.values():
-        first, *rest = sorted(runs) or [None]
-        for run in rest:
-            group[find(run)] = find(first)
+        for run in runs:
+            group[find(run)] = find(min(runs))
     for item, runs in used.items():
         if runs:
             item.add_marker(pytest.mark.slow)
-            item.add_marker(pytest.mark.xdist_group(find(sorted(runs)[0]).replace(":", "_").replace("?", "any")))
+            item.add_marker(pytest.mark.xdist_group(find(min(runs)).replace(":", "_").replace("?", "any")))
 
 
 @pytest.hookimpl(trylast=True)

@@ -37,7 +37,7 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
-from test_structure_opensees import RECORDS, L, W, _gravity, _law_bound, _transient, ops
+from test_structure_opensees import RECORDS, L, W, _gravity, _law_bound, _transient, _two_nodes, ops, single_fp_2d
 
 from dccss.mechanics.structure import G, Ground, Structure, respond
 from dccss.paper.prototypes import DFP1
@@ -80,28 +80,7 @@ def opensees_speed(t, acc, model, uy, sub=10):
     """OpenSees' stroke (m) at the sample times: ``test_structure_opensees.opensees_2d`` with the
     frictionModel ``model`` (kInit = μ_slow W / uy; the record's last value twice, as the Path series
     is 0 beyond its end)."""
-    dt = float(t[1] - t[0])
-    ops.wipe()
-    ops.model("basic", "-ndm", 2, "-ndf", 3)
-    ops.node(1, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1)
-    ops.fix(2, 0, 0, 1)
-    ops.mass(2, W / G, W / G, 0.0)
-    ops.frictionModel(*model)
-    ops.uniaxialMaterial("Elastic", 1, 1e12)
-    ops.uniaxialMaterial("Elastic", 2, 1.0)
-    ops.element("singleFPBearing", 1, 1, 2, 1, L, model[2] * W / uy, "-P", 1, "-Mz", 2,
-                "-orient", 0.0, 1.0, 0.0, -1.0, 0.0, 0.0)
-    _gravity((0.0, -W, 0.0))
-    ops.timeSeries("Path", 2, "-dt", dt, "-values", *acc, acc[-1])
-    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    _transient(dt, sub)
-    out = [0.0]
-    for _ in range(len(t) - 1):
-        assert ops.analyze(sub, dt / sub) == 0
-        out.append(ops.nodeDisp(2, 1))
-    return np.array(out)
+    return single_fp_2d(t, [*acc, acc[-1]], model, model[2] * W / uy, sub)
 
 
 def _shear(x, speed, up, mu, k_init, opensees):
@@ -250,13 +229,7 @@ def opensees_ptv(uy, sub=10):
     three factors on; UniformExcitation in X, Newmark average acceleration at ``sub`` steps a sample."""
     t, acc = _record()
     dt = float(t[1] - t[0])
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.mass(2, PTV_W / G, PTV_W / G, PTV_W / G, 0.0, 0.0, 0.0)
+    _two_nodes(3, PTV_W / G)
     ops.uniaxialMaterial("Elastic", 1, 1e12)
     ops.uniaxialMaterial("Elastic", 2, 1.0)
     # 30 positional values: MuRef, IsPressureDependent, pRef, IsTemperatureDependent, Diffusivity, Conductivity,

@@ -40,6 +40,18 @@ RECORDS = ROOT / "config/studies/records"
 W = 1000.0  # N: drops out
 
 
+def _two_nodes(ndm, mass):
+    """A fresh model of ``ndm`` dimensions: node 1 fixed, node 2 at the same place free to translate and
+    carrying ``mass`` (kg) in each translation, both rotations (3D: all three) fixed."""
+    ops.wipe()
+    ops.model("basic", "-ndm", ndm, "-ndf", 3 if ndm == 2 else 6)
+    ops.node(1, *[0.0] * ndm)
+    ops.node(2, *[0.0] * ndm)
+    ops.fix(1, *[1] * (3 if ndm == 2 else 6))
+    ops.fix(2, *[0] * ndm, *[1] * (1 if ndm == 2 else 3))
+    ops.mass(2, *[mass] * ndm, *[0.0] * (1 if ndm == 2 else 3))
+
+
 def _transient(dt, sub):
     ops.constraints("Plain")
     ops.numberer("Plain")
@@ -71,22 +83,22 @@ def opensees_2d(t, acc, mu, uy, sub=10):
     superstructure's (mass W / g, vertical load W), Coulomb friction μ, Reff = L, kInit = μW / uy, a
     stiff axial spring, UniformExcitation with the record's samples (Path: straight lines), Newmark
     average acceleration at ``sub`` steps per sample."""
+    return single_fp_2d(t, acc, ("Coulomb", 1, mu), mu * W / uy, sub)
+
+
+def single_fp_2d(t, values, friction, k_init, sub):
+    """``opensees_2d`` with the frictionModel ``friction`` (its arguments), initial stiffness ``k_init`` and
+    the Path series ``values``."""
     dt = float(t[1] - t[0])
-    ops.wipe()
-    ops.model("basic", "-ndm", 2, "-ndf", 3)
-    ops.node(1, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1)
-    ops.fix(2, 0, 0, 1)
-    ops.mass(2, W / G, W / G, 0.0)
-    ops.frictionModel("Coulomb", 1, mu)
+    _two_nodes(2, W / G)
+    ops.frictionModel(*friction)
     ops.uniaxialMaterial("Elastic", 1, 1e12)
     ops.uniaxialMaterial("Elastic", 2, 1.0)
     # local x (axial) along global Y (up), local y (shear) along global -X: the stroke is node 2's X
-    ops.element("singleFPBearing", 1, 1, 2, 1, L, mu * W / uy, "-P", 1, "-Mz", 2,
+    ops.element("singleFPBearing", 1, 1, 2, 1, L, k_init, "-P", 1, "-Mz", 2,
                 "-orient", 0.0, 1.0, 0.0, -1.0, 0.0, 0.0)
     _gravity((0.0, -W, 0.0))
-    ops.timeSeries("Path", 2, "-dt", dt, "-values", *acc)
+    ops.timeSeries("Path", 2, "-dt", dt, "-values", *values)
     ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
     _transient(dt, sub)
     out = [0.0]
@@ -100,13 +112,7 @@ def opensees_3d(t, ax, ay, mu, uy, sub=10):
     """As ``opensees_2d`` in three dimensions (SingleFPSimple3d: the circular interaction), the pair's
     x and y components as UniformExcitation in X and Y; the stroke (T, 2)."""
     dt = float(t[1] - t[0])
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.mass(2, W / G, W / G, W / G, 0.0, 0.0, 0.0)
+    _two_nodes(3, W / G)
     ops.frictionModel("Coulomb", 1, mu)
     ops.uniaxialMaterial("Elastic", 1, 1e12)
     ops.uniaxialMaterial("Elastic", 2, 1.0)

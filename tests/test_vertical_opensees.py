@@ -28,7 +28,7 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
-from test_structure_opensees import RECORDS, L, W, _gravity, _law_bound, _transient, opensees_2d, ops
+from test_structure_opensees import RECORDS, L, W, _gravity, _law_bound, _transient, _two_nodes, opensees_2d, ops
 
 from dccss.mechanics.structure import G, Ground, solve
 from dccss.records import Record
@@ -56,13 +56,7 @@ def opensees_vertical(t, ax, av, mu, uy, sub=10):
     steps a sample. UniformExcitation loads the mass by -m a_g: the relative vertical equation is
     m üz + KV uz = -W - m a_v, so the axial force is W (1 + a_v / g) quasi-statically."""
     dt = float(t[1] - t[0])
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.mass(2, W / G, W / G, W / G, 0.0, 0.0, 0.0)
+    _two_nodes(3, W / G)
     ops.frictionModel("Coulomb", 1, mu)
     ops.uniaxialMaterial("Elastic", 1, KV)
     ops.uniaxialMaterial("Elastic", 2, 1.0)

@@ -11,8 +11,7 @@ wildcard_constraints:
 rule simulate:
     priority: 2
     output:
-        [f"results/cases/{{case_set}}/{{proto}}_{model}_dt{dt_label(dt)}.nc" for model in config["models"]
-         for dt in config["dt"]],
+        [case_path("{case_set}", "{proto}", model, dt) for model in config["models"] for dt in config["dt"]],
     params:
         script=script_hash("simulate.py"),
         cases=case_mappings,
