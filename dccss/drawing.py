@@ -2,7 +2,8 @@
 
 Shared by the paper's figures (``dccss.paper.figures``), the study plots (``dccss.studies.plots``)
 and the animations (``dccss.animation``): figures without pyplot (freed when unreferenced), laid
-out once and frozen (``freeze``), saved as PNG and PDF without varying metadata (``save``); the
+out once and frozen when saved (``freeze``; a figure that is only inspected is not laid out),
+saved as PNG and PDF without varying metadata (``save``); the
 plates, pad and rings drawn to scale from a configuration (``draw_device``) with zooms on the pad's
 corners (``corner_inset``). Lengths are plotted in cm, mm or µm (``length_unit``), angles in
 degrees.
@@ -73,7 +74,9 @@ def freeze(fig):
     PDF prints tick positions to 1e-10 pt. The layout solver's last digits vary between processes:
     the frozen axes positions are rounded so that the PDF coordinates (1e-6 pt) are the same in
     every run. Each save then draws only once, and the layout costs no draw of its own: the
-    layout engine runs by itself (what a draw would do first), on the renderer of the PNG."""
+    layout engine runs by itself (what a draw would do first), on the renderer of the PNG.
+    ``save`` calls it; a figure frozen already is left as it is (its limits and positions are
+    rounded already)."""
     for ax in fig.axes:
         for get, set_ in ((ax.get_xlim, ax.set_xlim), (ax.get_ylim, ax.set_ylim)):
             set_(*(float(f"{v:.{LIMIT_DIGITS}g}") for v in get()))
@@ -245,6 +248,8 @@ def step_path(t, end, stick):
 
 
 def save(fig: Figure, png_path, pdf_path) -> None:
-    """Write ``fig`` as PNG (150 dpi) and PDF, atomically and with reproducible bytes."""
+    """Lay ``fig`` out once (``freeze``) and write it as PNG (150 dpi) and PDF, atomically and with
+    reproducible bytes."""
+    freeze(fig)
     write_atomic(png_path, lambda f: fig.savefig(f, format="png", dpi=DPI, metadata=PNG_METADATA))
     write_atomic(pdf_path, lambda f: fig.savefig(f, format="pdf", metadata=PDF_METADATA))

@@ -197,7 +197,8 @@ def instants(v: View, at=None) -> list[int]:
 
 def figure(ds, at=None, title=None):
     """The summary figure of a history: plan view, the pad axis's trace, tilt and rise against time,
-    and the section at each instant (``instants``). Returns the frozen Figure."""
+    and the section at each instant (``instants``). Returns the Figure (``plot`` lays it out once and
+    freezes it before writing it: ``drawing.freeze``)."""
     g = geometry_from_attrs(ds.attrs)
     v = view(ds)
     steps = instants(v, at)
@@ -245,7 +246,6 @@ def figure(ds, at=None, title=None):
         draw_structure(fig.add_subplot(grid[3, 0]), fig.add_subplot(grid[3, 1]), ds, steps,
                        letters=(chr(100 + len(steps)), chr(101 + len(steps))))
     drawing.caption_line(fig, (title or caption(ds, v)) + ("\n" + notes if notes else ""))
-    drawing.freeze(fig)
     return fig
 
 
@@ -330,6 +330,7 @@ def plot(path, output, at=None) -> str:
     except ValueError as err:
         raise AnimationError(f"--at: {err}") from None
     metadata = drawing.PNG_METADATA if suffix == ".png" else drawing.PDF_METADATA
+    drawing.freeze(fig)
     write_atomic(output, lambda f: fig.savefig(f, format=suffix[1:], dpi=drawing.DPI, metadata=metadata))
     steps = ", ".join(f"{ds['t'].values[n]:g} s" for n in instants(view(ds), at))
     return f"{output}: {ds.sizes['t'] - 1} steps, sections at {steps}"

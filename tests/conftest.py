@@ -3,10 +3,12 @@
 import bisect
 import copy
 import inspect
+import os
 import re
 import shutil
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -41,6 +43,26 @@ def scalar_at(ground, component=0):
         return a0[k] + a1[k] * (min(max(s, first), last) - times[k])
 
     return at
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection(session):
+    """Compile the kernels the cache lacks (a fresh clone, a change to the mechanics) once, one process per
+    core, before any test runs: else each worker, and each of a workflow's parallel jobs, compiles the
+    same kernel at the same time (in a fresh clone, about 90 s of the tests' time against 30 s). Nothing
+    where the cache holds them all; in a worker (pytest-xdist), nothing: the controller does it while the
+    workers start and collect, and sends them tests after it."""
+    if hasattr(session.config, "workerinput"):
+        return
+    from dccss.mechanics import warmup
+
+    todo = warmup.cold()
+    if todo:
+        start = time.monotonic()
+        warmup.warm(os.cpu_count() or 1, only=todo)
+        reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+        if reporter is not None:
+            reporter.write_line(f"compiled the kernels ({', '.join(todo)}) in {time.monotonic() - start:.1f} s")
 
 
 ROOT = Path(__file__).resolve().parents[1]

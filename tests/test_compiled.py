@@ -298,3 +298,17 @@ def test_bad_input_rejected_alike():
             call(g, np.array([0.0]))
     with pytest.raises(ValueError, match="model must be one of"):
         compiled.summarize("rocking", g, np.array([0.0, 0.01]))
+
+
+def test_a_record_per_case_read_only_runs_the_kernel_the_warm_up_compiles():
+    """A batch whose cases each have their own record, read-only (a view of a study's records), compiled the
+    batch kernel a second time, for read-only arrays: the warm-up (``python -m dccss.mechanics``) did not
+    cover it. The batch copies such a record: one signature."""
+    from dccss.mechanics import registry, scalar, warmup
+
+    warmup.warm_part("planar compliant")
+    Xg = np.linspace(0.0, 1e-3, 3)[:, None] * np.array([1.0, 2.0])
+    Xg.flags.writeable = False
+    compiled.summarize("compliant", warmup._device(), Xg)
+    compiled.run("compliant", warmup._device(), Xg)
+    assert len(scalar._KERNELS[registry.model("compliant").planar.batch].signatures) == 1

@@ -15,6 +15,7 @@ from matplotlib.text import Text
 from dccss import plan
 from dccss.animation import draw_frame
 from dccss.case import geometry_from
+from dccss.drawing import freeze
 from dccss.excitation import Oriented, Sine
 from dccss.mechanics.structure import Structure
 from dccss.paper.figures import figure_specs, render
@@ -92,7 +93,7 @@ def study(failed):
 
 def test_failed_points_are_marked_on_the_bottom_edge_as_the_legend_says():
     ds = study({"stick_slip": [(0.02, "DFP1")], "compliant": [(0.02, "DFP2"), (0.01, "DFP2")]})
-    fig = studyplots.maps(ds, {}, "caption")
+    fig = freeze(studyplots.maps(ds, {}, "caption"))  # laid out as saved
     legend = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
     assert any("solver failed" in label and "marked on the bottom edge" in label for label in legend)
     panels = [ax for ax in fig.axes if any(ln.get_gid() == "failed" for ln in ax.get_lines())]
@@ -194,7 +195,7 @@ def _caption(fig):
 
 @pytest.mark.parametrize("name, sticking", [("compliant", False), ("stick_slip", True), ("structure", True)])
 def test_plot_legends_lie_outside_the_data_and_the_caption_names_what_is_drawn(runs, name, sticking):
-    fig = plan.figure(runs[name])
+    fig = freeze(plan.figure(runs[name]))  # laid out as ``dccss plot`` writes it
     caption = _caption(fig)
     assert ("end of sticking in red" in caption) == sticking
     assert "sticking" in caption or not sticking
@@ -219,7 +220,7 @@ def test_plot_draws_the_events_of_a_history_and_says_them(capacity, on_failure, 
     animation does, without overlapping the panels (before, ``dccss plot`` showed none: a failed run looked
     like a short history)."""
     ds = simulate(DFP1, Sine(0.9, 10.0, 0.6), model="stick_slip", dt=0.01, capacity=capacity, on_failure=on_failure)
-    fig = plan.figure(ds)
+    fig = freeze(plan.figure(ds))
     (traces,) = [ax for ax in fig.axes if ax.get_title(loc="left").startswith("(c)")]
     assert [ln.get_label() for ln in traces.get_lines() if not ln.get_label().startswith("_")
             and ln.get_linestyle() == "--" and ln.get_label() in ("pad reaches a ring", "solver failure")] == lines

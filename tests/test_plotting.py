@@ -164,3 +164,19 @@ def test_figure_specs_parse_without_matplotlib():
             "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_save_lays_the_figure_out_once_and_saving_it_again_writes_the_same_bytes(tmp_path):
+    """A figure is laid out when saved (``save`` freezes it), not when drawn up: a figure frozen already
+    (saved once) is written with the same bytes."""
+    from dccss.drawing import new_figure
+
+    fig, axs = new_figure((4.0, 3.0), 1, 2)
+    axs[0, 0].plot([0.0, 1.0], [0.0, 1.234567890123])
+    axs[0, 1].set_ylabel("a long label " * 3)
+    assert fig.get_layout_engine() is not None
+    save(fig, tmp_path / "a.png", tmp_path / "a.pdf")
+    assert fig.get_layout_engine() is None
+    save(fig, tmp_path / "b.png", tmp_path / "b.pdf")
+    for ext in ("png", "pdf"):
+        assert (tmp_path / f"a.{ext}").read_bytes() == (tmp_path / f"b.{ext}").read_bytes()

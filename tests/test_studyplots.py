@@ -6,7 +6,7 @@ import xarray as xr
 from matplotlib.collections import PatchCollection, QuadMesh
 from matplotlib.image import AxesImage
 
-from dccss.drawing import save
+from dccss.drawing import freeze, save
 from dccss.studies import plots as studyplots
 
 MODELS = ("compliant", "stick_slip")
@@ -364,7 +364,7 @@ def test_a_suites_panels_go_on_rows_of_a_figure_at_most_16_inches_wide(records, 
     """A suite's six summaries (the pad's and its structure's) were drawn in one row of panels, 24.6 inches of
     curves and 25.8 of maps (3690 pixels for six records), too wide to read: they go on rows, at most 16
     inches wide, every summary drawn."""
-    fig = studyplots.maps(suite(records, **axes), {}, "caption")
+    fig = freeze(studyplots.maps(suite(records, **axes), {}, "caption"))  # laid out as saved
     panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_title()]
     assert fig.get_figwidth() <= 16.0
     assert all(any(label in ax.get_title() for ax in panels) for label in SUMMARY_LABELS)
@@ -372,9 +372,22 @@ def test_a_suites_panels_go_on_rows_of_a_figure_at_most_16_inches_wide(records, 
     assert len({round(ax.get_position().y0, 3) for ax in panels}) > (1 if "friction" not in axes else 4)
 
 
-@pytest.mark.parametrize("n", range(1, 13))
-def test_any_number_of_panels_is_laid_out_at_most_16_inches_wide_on_as_few_rows_as_fit(n):
-    for inches, rows, margin in ((studyplots.LINE_INCHES, 1, 0.0), (studyplots.MAP_INCHES, 4, studyplots.MAP_MARGIN)):
+GRIDS = ((studyplots.LINE_INCHES, 1, 0.0), (studyplots.MAP_INCHES, 4, studyplots.MAP_MARGIN))
+
+
+@pytest.mark.parametrize("inches, rows, margin", GRIDS, ids=["lines", "maps"])
+def test_any_number_of_panels_goes_on_as_few_blocks_as_keep_the_figure_at_most_16_inches_wide(inches, rows, margin):
+    for n in range(1, 61):
+        blocks, ncols = studyplots._grid_shape(n, inches[0], margin)
+        assert (blocks - 1) * ncols < n <= blocks * ncols  # every panel has a place, the last block is not empty
+        assert ncols * inches[0] + margin <= 16.0 or ncols == 1
+        assert blocks == 1 or -(-n // (blocks - 1)) * inches[0] + margin > 16.0  # one block fewer: too wide
+        assert blocks * ncols - n < blocks  # shared evenly: no block more than one panel short
+
+
+@pytest.mark.parametrize("n", [1, 5, 7, 12])
+def test_the_panels_of_a_grid_are_its_columns_of_axes_the_places_left_hidden(n):
+    for inches, rows, margin in GRIDS:
         fig, columns = studyplots._grid(n, inches, rows, margin)
         assert len(columns) == n and all(len(column) == rows for column in columns)
         assert len([ax for ax in fig.axes if ax.get_visible()]) == n * rows

@@ -520,7 +520,9 @@ class _Batch:
         if all(d == 1 for d in Xg.shape[1:]):  # one ground motion for all cases
             self.Xg = np.array(Xg.reshape(T, 1), dtype=float, order="C")
         else:
-            self.Xg = np.ascontiguousarray(np.broadcast_to(Xg, (T,) + shape).reshape(T, N), dtype=float)
+            # a copy, writable as the one above: a read-only view (a case's own record) would compile the
+            # batch kernel a second time, for read-only arrays
+            self.Xg = np.array(np.broadcast_to(Xg, (T,) + shape).reshape(T, N), dtype=float, order="C")
         self.q0 = np.array(q0.reshape(N, 9), dtype=float, order="C")
 
         def flat(x, dtype=float):

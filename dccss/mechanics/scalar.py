@@ -79,10 +79,15 @@ def kernel(function, parallel=False):
             _KERNELS[function] = numba.njit(parallel=parallel, **OPTIONS)(function)
         finally:
             numba.config.CACHE_DIR = saved
-        if folder is not None and not any(folder.rglob(f"*.{function.__qualname__}-*.nbi")):  # numba's index
+        if folder is not None and not is_cached(function, folder):
             log.info("compiling %s: once for this machine and version of dccss (10-30 s; cached in %s)",
                      function.__qualname__, folder)
     return _KERNELS[function]
+
+
+def is_cached(function, folder) -> bool:
+    """Whether the cache ``folder`` holds numba's index of ``function`` (its first call then loads it)."""
+    return any(folder.rglob(f"*.{function.__qualname__}-*.nbi"))
 
 
 def source_digest(folder=Path(__file__).parent) -> str:

@@ -1034,8 +1034,11 @@ def _plane(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT_LAW, s
     return u, v, z, stick, temperature, mu
 
 
-def warm():
-    """Compile (or load) the one- and two-component kernels into the on-disk cache."""
+def warm(kernels=("plane", "line")):
+    """Compile (or load) the two-component (``plane``) and one-component (``line``) kernels into the
+    on-disk cache."""
     ground = Ground.from_samples([0.0, 0.01, 0.02], [[0.0, 0.0], [1.0, 0.5], [0.0, 0.0]])
-    _plane(ground, 2.0, 0.0, 0.05 * G, compiled=True)
-    _line(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=True)
+    if "plane" in kernels:
+        _plane(ground, 2.0, 0.0, 0.05 * G, compiled=True)
+    if "line" in kernels:
+        _line(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=True)

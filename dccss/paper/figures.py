@@ -34,7 +34,6 @@ from ..drawing import (
     draw_device,
     drop_unused,
     frame_points,
-    freeze,
     grid_shape,
     headroom,
     legend_on,
@@ -68,12 +67,12 @@ def title_text(title):
 
 def _finish(fig, fig_id, caption, title=None):
     """Heading "Figure N. <title>" (N from ``fig_id`` "figNN"; the title's symbols in mathtext, see
-    ``title_text``), caption line; freeze the layout."""
+    ``title_text``), caption line (laid out when saved: ``drawing.save``)."""
     number = re.fullmatch(r"fig([0-9]+)", fig_id)
     heading = f"Figure {int(number[1])}." if number else fig_id
     fig.suptitle(f"{heading} {title_text(title)}" if title else heading, fontsize=12)
     caption_line(fig, title_text(caption))
-    return freeze(fig)
+    return fig
 
 
 def _case_label(panel):
@@ -360,7 +359,8 @@ def render(spec: FigureSpec, datasets: Sequence, caption: str) -> Figure:
 
     Returns
     -------
-    matplotlib.figure.Figure (no pyplot: freed when unreferenced).
+    matplotlib.figure.Figure (no pyplot: freed when unreferenced), laid out when saved
+    (``dccss.drawing.save``) or drawn.
     """
     if len(datasets) != len(spec.panels):
         raise ValueError(f"{spec.id} draws {len(spec.panels)} panel(s), got {len(datasets)} dataset(s)")

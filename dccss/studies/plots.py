@@ -35,7 +35,7 @@ from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import NullLocator
 from matplotlib.transforms import ScaledTranslation
 
-from ..drawing import caption_line, freeze, friction_loop, new_figure
+from ..drawing import caption_line, friction_loop, new_figure
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import G
 from ..mechanics.summaries import model_specific
@@ -185,7 +185,7 @@ def _legend_rows(groups, width):
 
 def _complete(fig, title, caption, groups):
     """The title over a legend at the top (a row per group of handles if one line is too long), the
-    caption line at the bottom; the layout is then computed once and frozen."""
+    caption line at the bottom (laid out once and frozen when saved: ``drawing.save``)."""
     rows = _legend_rows(groups, fig.get_figwidth())
     ncols = max(1, *(len(row) for row in rows))
     blank = Line2D([], [], ls="none", label=" ")
@@ -194,7 +194,7 @@ def _complete(fig, title, caption, groups):
     fig.legend(handles=by_columns, loc="outside upper center", ncols=ncols, fontsize=9, frameon=False, title=title,
                title_fontsize=12)
     caption_line(fig, caption)
-    return freeze(fig)
+    return fig
 
 
 # --- a suite scaled to a spectrum ---------------------------------------------------------------
@@ -237,7 +237,7 @@ def spectra(ds, caption: str) -> Figure:
              f"{float(how['scaling_suite_factor']):.3g})")
     fig.suptitle(title, fontsize=11)
     caption_line(fig, caption)
-    return freeze(fig)
+    return fig
 
 
 # --- time histories ------------------------------------------------------------------------------
@@ -312,12 +312,18 @@ def _panels(axs, n, rows):
     return columns[:n]
 
 
+def _grid_shape(n, width, margin=0.0):
+    """(blocks, columns) of ``n`` panels ``width`` inches wide beside ``margin`` inches: as few blocks, one
+    below the other, as keep the figure at most MAX_INCHES wide, the panels shared evenly between them."""
+    blocks = -(-n // max(1, int((MAX_INCHES - margin) // width)))
+    return blocks, -(-n // blocks)
+
+
 def _grid(n, inches, rows=1, margin=0.0):
     """A figure of ``n`` panels, each a column of ``rows`` axes of ``inches`` (width, height), beside ``margin``
-    inches: in as few blocks, one below the other, as keep it at most MAX_INCHES wide, the panels shared
-    evenly between them, with room for a title and legend above; the figure and the panels' columns."""
-    blocks = -(-n // max(1, int((MAX_INCHES - margin) // inches[0])))
-    ncols = -(-n // blocks)
+    inches, in blocks (``_grid_shape``), with room for a title and legend above; the figure and the
+    panels' columns."""
+    blocks, ncols = _grid_shape(n, inches[0], margin)
     fig, axs = new_figure((inches[0] * ncols + margin, inches[1] * rows * blocks + 1.6), rows * blocks, ncols)
     return fig, _panels(axs, n, rows)
 
@@ -959,4 +965,4 @@ def convergence(rows, caption: str) -> Figure:
         ax.legend(fontsize=8, title=f"order fitted on {fitted}", title_fontsize=8)
     fig.suptitle("Stick-slip against Δt: the sticking rotation and the distance to compliant sliding", fontsize=12)
     caption_line(fig, caption)
-    return freeze(fig)
+    return fig
