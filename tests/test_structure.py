@@ -596,3 +596,20 @@ def test_the_peaks_reach_the_records_end_when_the_step_does_not(components):
     coarse = solve(ground, np.arange(250) * 0.04, 1.8, 0.05, 0.0)
     assert fine.peaks[0] > 5e-3 and coarse.peaks == pytest.approx(fine.peaks, rel=1e-12)
     assert np.max(np.linalg.norm(coarse.stroke, axis=1)) < 0.5 * fine.peaks[0]  # the steps alone miss the pulse
+
+
+def test_the_tableau_is_scipys_dop853_read_without_importing_scipy_integrate():
+    """The two-component integration's coefficients are scipy.integrate.DOP853's, bit for bit, read from
+    their file in a process that does not import scipy.integrate (0.3-0.5 s in every job)."""
+    import subprocess
+    import sys
+
+    from scipy.integrate import DOP853
+
+    from dccss.mechanics.structure import _dop853
+
+    for ours, theirs in zip(_dop853(), (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5), strict=True):
+        assert ours.dtype == theirs.dtype and np.array_equal(ours, theirs)
+    probe = ("import sys; from dccss.mechanics.structure import _tableau; _tableau(False); "
+             "print('scipy.integrate' in sys.modules)")
+    assert subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout == "False\n"

@@ -605,14 +605,32 @@ LINE_WORK = 1
 DONE, CHATTER, FAILED = 0, 1, 2
 
 
-@functools.cache
-def _tableau(compiled):
-    """DOP853's A (row-major), B, C, E3 and E5 (scipy.integrate.DOP853's): numpy arrays for the compiled
-    kernel, lists (faster to index) interpreted."""
+def _dop853():
+    """scipy's DOP853 coefficients (A, B, C, E3, E5 as ``scipy.integrate.DOP853`` takes them): read from
+    their module's file, which imports numpy alone; importing it, or the class, imports all of
+    ``scipy.integrate`` (0.3-0.5 s, in every workflow job with a two-component structure). The class's
+    attributes where the file is not found."""
+    import importlib.util
+    from pathlib import Path
+
+    scipy_spec = importlib.util.find_spec("scipy")
+    path = Path(scipy_spec.origin).parent / "integrate" / "_ivp" / "dop853_coefficients.py"
+    if path.is_file():
+        spec = importlib.util.spec_from_file_location("_dccss_dop853_coefficients", path)
+        table = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(table)
+        n = table.N_STAGES
+        return table.A[:n, :n], table.B, table.C[:n], table.E3, table.E5
     from scipy.integrate import DOP853
 
-    arrays = [np.ascontiguousarray(c, dtype=float).ravel() for c in (DOP853.A, DOP853.B, DOP853.C, DOP853.E3,
-                                                                      DOP853.E5)]
+    return DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5
+
+
+@functools.cache
+def _tableau(compiled):
+    """DOP853's A (row-major), B, C, E3 and E5 (scipy.integrate.DOP853's: ``_dop853``): numpy arrays for the
+    compiled kernel, lists (faster to index) interpreted."""
+    arrays = [np.ascontiguousarray(c, dtype=float).ravel() for c in _dop853()]
     if [a.size for a in arrays] != [STAGES * STAGES, STAGES, STAGES, STAGES + 1, STAGES + 1]:
         raise RuntimeError(f"scipy.integrate.DOP853's tableau is not of {STAGES} stages: scipy changed it")
     return tuple(arrays) if compiled else tuple(a.tolist() for a in arrays)
