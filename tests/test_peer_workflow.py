@@ -35,17 +35,17 @@ STUDY = {"study": {"name": "peer"}, "prototype": "DFP1", "dt": 0.02, "models": [
          "sweep": {"record": [{"peer": "downloads/_SearchResults.csv"}]}}
 
 
-def _run(tmp_path, records, study):
+def _run(tmp_path, records, study, *targets):
     work = copy_project(tmp_path)
     csv = write_download(work / "config/studies/downloads", records)
     (work / "config/studies/peer.yaml").write_text(yaml.safe_dump(study))
-    run = snakemake(work, "--configfile", "config/studies/peer.yaml")
+    run = snakemake(work, *targets, "--configfile", "config/studies/peer.yaml")
     return work, csv, run
 
 
 def test_twelve_pairs_as_peer_gives_them_run_and_each_equals_its_record_alone(tmp_path):
     records = twelve_pairs()
-    work, csv, run = _run(tmp_path, records, STUDY)
+    work, csv, run = _run(tmp_path, records, STUDY, "results/studies/peer/peer.nc")  # drawn: the fourteen records
     assert run.returncode == 0, run.stderr[-3000:]
     log = run.stderr + "".join(p.read_text() for p in (work / "logs").rglob("*.log"))
     assert "85 degrees apart" in log and "run over the" in log  # the skewed and the uneven pairs say so
@@ -77,6 +77,7 @@ def test_a_fourteen_record_download_with_verticals_runs_scaled_by_peers_factors(
     assert np.array_equal(ds["record_scale"].values, [r.scale_factor for r in records])
     assert np.all(ds["normal_ratio_min"].sel(model="compliant").values < 1.0)
     assert "records_uplift" in ds and "normal_ratio_min_suite" in ds
+    assert (work / "figures/studies/peer/maps.png").is_file()
     # a file the table lists but the folder lacks: named with its record, nothing run
     (csv.parent / records[5].file(records[5].v)).unlink()
     (work / "results").rename(work / "old_results")
