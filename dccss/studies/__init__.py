@@ -3,12 +3,11 @@
 In four parts, in the order a workflow uses them:
 
 1. ``spec``: the study file, validated key by key before anything runs (``Study.from_config``);
-   ``sweep_spec`` is the part of it that the sweep's results depend on, ``history_mapping`` the case
-   of a history point.
+   ``sweep_spec`` is the part of it that the sweep's results depend on.
 2. ``grid``: the cases of the sweep (``Grid``): their axis values, devices, ground motions and
    step sizes, and the chunks a workflow runs as jobs.
 3. ``run``: one chunk under one model, solved in batches and reduced to summaries
-   (``run_chunk``), and the chosen cases run in full (``history_case``).
+   (``run_chunk``), and the chosen cases run in full (``history_mapping``, ``history_case``).
 4. ``combine``: the chunks of every model in one dataset with a dimension per sweep axis.
 
 A study file (schema: ``dccss/schemas/study.schema.yaml``, which the workflow applies too)::
@@ -45,20 +44,10 @@ motions are processed linearly, so this equals scaling the record), ``azimuth`` 
 each step size as one batch).
 """
 
-import importlib
+from .combine import combine
+from .grid import Grid
+from .run import history_case, history_mapping, run_chunk
+from .spec import AXES, Study, StudyError, sweep_spec
 
-#: where each name lives: imported when first asked for, so that reading a study (``spec``, ``grid``:
-#: a workflow's DAG) does not import xarray (0.3 s), which ``run`` and ``combine`` need
-_MODULES = {"AXES": "spec", "Study": "spec", "StudyError": "spec", "history_mapping": "spec", "sweep_spec": "spec",
-            "Grid": "grid", "history_case": "run", "run_chunk": "run", "combine": "combine"}
-__all__ = sorted(_MODULES)
-
-
-def __getattr__(name):
-    if name not in _MODULES:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    return getattr(importlib.import_module(f"{__name__}.{_MODULES[name]}"), name)
-
-
-def __dir__():
-    return sorted({*globals(), *_MODULES})
+__all__ = ["AXES", "Grid", "Study", "StudyError", "combine", "history_case", "history_mapping", "run_chunk",
+           "sweep_spec"]

@@ -666,33 +666,3 @@ def _check_grid(grid):
             except ValueError as err:
                 where = ", ".join(f"{k}={v}" for k, v in grid.point(i).items())
                 raise StudyError(f"sweep point {where}: {str(err).split(' (at batch index')[0]}") from None
-
-
-def history_mapping(study, i, model) -> dict:
-    """The case mapping (``dccss.case``) of the i-th history point under ``model``: all that its
-    result depends on (a workflow reruns the history when, and only when, this changes)."""
-    point = study.histories[i]
-    device = study.prototypes[point["prototype"]] if "prototype" in point else study.prototype
-    full = {k: float(v) for k, v in device.items()}
-    full.update({k: v for k, v in point.items() if k in PARAMETERS})
-    if study.symmetric:
-        full.update({k: full[src] for k, src in PLATE3_FOLLOWS.items()})
-    excitation = dict(study.excitation_spec)
-    if "record" in point:
-        excitation = entry_excitation(excitation, point["record"], study.record_entries[point["record"]])
-    if study.suite_factor is not None:  # a suite scaled over a period range: the factor all its records set
-        excitation["scale"] = {**excitation["scale"], "suite_factor": study.suite_factor}
-    for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
-        if key in point:
-            excitation[key] = point[key]
-    mapping = {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
-               "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
-               "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},
-               "capacity": study.capacity, "on_failure": study.options.on_failure}
-    if study.structure is not None:
-        s = study.structure
-        factor = study.bounds[point["property"]] if "property" in point else s.factor
-        mapping["structure"] = {"friction": float(point["friction"]) if "friction" in point else s.friction,
-                                "damping": float(point.get("damping", s.damping)), "friction_on": s.friction_on,
-                                **({"property": factor} if factor != 1.0 else {})}
-    return mapping

@@ -8,7 +8,8 @@ from snakemake.exceptions import WorkflowError
 
 from dccss.case import CaseError
 from dccss.mechanics.models import REGISTRY
-from dccss.studies.spec import Study, entry_files, history_mapping, sweep_spec  # not xarray: the DAG reads the study
+from dccss.studies import Study, history_mapping, sweep_spec
+from dccss.studies.spec import entry_files
 
 STUDY_FILE = Path(workflow.overwrite_configfiles[-1]) if workflow.overwrite_configfiles else Path("study.yaml")
 # relative to the working directory, as a job's parameter: a project moved or copied whole reruns nothing
