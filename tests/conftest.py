@@ -107,11 +107,16 @@ def shipped_study(tmp_path_factory):
     return run
 
 
+#: fixtures that run a workflow once for the tests that use them (``shipped_study``: one run per study)
+SHARED_RUNS = {"reproduction", "tiny_run"}
+
+
 def _shared_runs(item):
-    """The session-wide runs a test uses: "reproduction", and "study:<name>" for each shipped study it runs
-    (its ``name`` parameter, or the names in its ``shipped_study("...")`` calls; "study:?" if neither says)."""
+    """The shared runs a test uses: those of SHARED_RUNS it names, and "study:<name>" for each shipped study it
+    runs (its ``name`` parameter, or the names in its ``shipped_study("...")`` calls; "study:?" if neither
+    says)."""
     names = set(getattr(item, "fixturenames", ()))
-    runs = {"reproduction"} & names
+    runs = SHARED_RUNS & names
     if "shipped_study" in names:
         callspec = getattr(item, "callspec", None)
         studies = {callspec.params["name"]} if callspec and "name" in callspec.params else set(

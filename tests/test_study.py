@@ -151,22 +151,29 @@ def digest(root: Path):
     return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(root.rglob("*.nc"))}
 
 
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    """The TINY study run in full with the default profile, once for the tests that read it (one worker:
+    conftest groups the tests using this fixture)."""
+    work = copy_project(tmp_path_factory.mktemp("tiny"))
+    (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
+    run = snakemake(work, "--configfile", "tiny.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    return work
+
+
 @pytest.mark.slow
-def test_cluster_generic_profile_matches_local_run(tmp_path):
+def test_cluster_generic_profile_matches_local_run(tiny_run, tmp_path):
     """Every job through a scheduler-style submit script: same files as a local run (the results: the
     plots, drawn from them by the same rule, are left out)."""
-    results = {}
     targets = ["results/studies/tiny/tiny.nc", *(f"results/studies/tiny/histories/{m}_0.nc" for m in TINY["models"])]
-    for profile in ("profiles/default", "profiles/cluster-local"):
-        work = tmp_path / profile.split("/")[-1]
-        work.mkdir()
-        copy_project(work)
-        (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
-        run = snakemake(work, *targets, "--configfile", "tiny.yaml", profile=profile)
-        assert run.returncode == 0, run.stderr[-3000:]
-        results[profile] = digest(work / "results/studies/tiny")
-    assert len(results["profiles/default"]) == 7  # 2 models x 2 chunks, the combined file, 2 histories
-    assert results["profiles/default"] == results["profiles/cluster-local"]
+    work = copy_project(tmp_path)
+    (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
+    run = snakemake(work, *targets, "--configfile", "tiny.yaml", profile="profiles/cluster-local")
+    assert run.returncode == 0, run.stderr[-3000:]
+    local = digest(tiny_run / "results/studies/tiny")
+    assert len(local) == 7  # 2 models x 2 chunks, the combined file, 2 histories
+    assert digest(work / "results/studies/tiny") == local
 
 
 def test_dt_axis_runs_each_step_size_as_its_own_batch():
@@ -224,12 +231,10 @@ def planned(work, configfile):
 
 
 @pytest.mark.slow
-def test_a_job_reruns_only_when_its_part_of_the_study_changes(tmp_path):
-    work = copy_project(tmp_path)
-    (work / "tiny.yaml").write_text(yaml.safe_dump(TINY))
-    assert snakemake(work, "--configfile", "tiny.yaml").returncode == 0
+def test_a_job_reruns_only_when_its_part_of_the_study_changes(tiny_run, tmp_path):
+    work = shutil.copytree(tiny_run, tmp_path / "work", symlinks=True)  # dry runs below: the shared run untouched
     assert planned(work, "tiny.yaml") == {}
-    moved = shutil.copytree(work, tmp_path.parent / f"{tmp_path.name}_moved", symlinks=True)  # times kept
+    moved = shutil.copytree(work, tmp_path / "moved", symlinks=True)  # times kept
     assert planned(moved, "tiny.yaml") == {}  # a project moved whole reruns nothing (the folder was a parameter)
     edits = {
         "description": (dict(study={"name": "tiny", "description": "another text"}), {"study_plots": 1}),
