@@ -62,8 +62,8 @@ DEFECTS = (
            "_dot(R2, n12) - k1, _dot(R3, n12) + k3)",
            "slipping (Eq. 37): the sign of k_3 in the row keeping RB3 on C^1C^3"),
     Defect("baseline_skipped", "dccss/records.py",
-           "vel, slope = _remove_trend(time, cumulative_trapezoid(acc, time, initial=0.0), baseline)",
-           "vel, slope = cumulative_trapezoid(acc, time, initial=0.0), 0.0",
+           "vel, slope = _remove_trend(time, cumulative_trapezoid(acc, time), baseline)",
+           "vel, slope = cumulative_trapezoid(acc, time), 0.0",
            "integrate: the baseline correction of the velocity skipped (whatever the baseline asked)"),
     Defect("ring_stop_one_step_early", "dccss/mechanics/models.py",
            "radius, dims, its, capacity)\n"
