@@ -133,7 +133,10 @@ def _shared_runs(item):
 def pytest_collection_modifyitems(items):
     """Tests that need a workflow run are slow (``pytest -m "not slow"`` is the quick loop). On several
     workers (pytest-xdist, ``--dist loadgroup``) the tests of one session-wide run (the reproduction, or
-    one shipped study) go to one worker, which runs it once; tests using several runs join their groups."""
+    one shipped study) go to one worker, which runs it once; tests using several runs join their groups.
+    The long tests go first (the shared runs' groups, then the other slow tests, each in the order
+    collected), so that the many short ones fill both workers at the end: collected by module, the
+    workflow tests came last, and one worker ran them while the other waited."""
     used = {item: _shared_runs(item) for item in items}
     group = {}  # run -> a representative run (union-find over the runs tests use together)
 
@@ -149,6 +152,9 @@ def pytest_collection_modifyitems(items):
         if runs:
             item.add_marker(pytest.mark.slow)
             item.add_marker(pytest.mark.xdist_group(find(min(runs)).replace(":", "_").replace("?", "any")))
+    groups = list(dict.fromkeys(find(min(runs)) for runs in used.values() if runs))
+    items.sort(key=lambda item: (groups.index(find(min(used[item]))) if used[item]
+                                 else len(groups) + (0 if item.get_closest_marker("slow") else 1)))
 
 
 @pytest.hookimpl(trylast=True)
