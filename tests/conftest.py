@@ -80,9 +80,30 @@ def copy_project(dest: Path) -> Path:
     return dest
 
 
+#: Snakemake's command line (what ``python -m snakemake`` runs), the process ended as soon as it returns: after
+#: running jobs, Snakemake leaves a timer thread of its job-rate limit (up to 1 s, which no setting removes)
+#: that the interpreter waits for at exit, an idle second of a worker per run. Output and logs are flushed first.
+SNAKEMAKE = """
+import logging, os, sys
+from snakemake.cli import main
+try:
+    main()
+    code = 0
+except SystemExit as end:
+    code = end.code if isinstance(end.code, int) else 0 if end.code is None else 1
+    if not isinstance(end.code, (int, type(None))):
+        print(end.code, file=sys.stderr)
+sys.stdout.flush()
+sys.stderr.flush()
+logging.shutdown()
+os._exit(code)
+"""
+
+
 def snakemake(cwd, *args, profile="profiles/default"):
-    """Run the project's workflow in ``cwd``; the completed process (stdout, stderr, returncode)."""
-    return subprocess.run([sys.executable, "-m", "snakemake", "--profile", profile, *args],
+    """Run the project's workflow in ``cwd`` (Snakemake's command line, ``SNAKEMAKE``); the completed process
+    (stdout, stderr, returncode)."""
+    return subprocess.run([sys.executable, "-c", SNAKEMAKE, "--profile", profile, *args],
                           cwd=cwd, capture_output=True, text=True)
 
 
