@@ -951,8 +951,9 @@ def read_components(paths, vertical=None, *, scale=1.0, window=None, baseline=No
     whole, then cut there: the same as a ``window`` over that time); ``"longest"`` pads the shorter
     files with zero acceleration samples up to the longest (then processed with the record, as if the
     file held them). Both say so: a :class:`PairWarning`, and each record's ``span`` (its attributes)
-    says what was dropped or padded, in s, and the largest |a| dropped. Different steps are refused:
-    nothing is resampled.
+    says what was dropped or padded, in s, and the largest |a| dropped. With ``"common"``, a ``window``
+    (which must lie within the common time) drops nothing the run would keep: then no warning, and
+    0 s dropped. Different steps are refused: nothing is resampled.
 
     Returns
     -------
@@ -1019,7 +1020,8 @@ def _joined(raws, window, pair_span, scale):
                               f"shorter ones instead")
         told, joined = [], []
         for r in raws:
-            out = (r.time < low - _SNAP * dt) | (r.time > high + _SNAP * dt)
+            # a window (within the common span) keeps nothing the join drops: the run loses nothing to it
+            out = ((r.time < low - _SNAP * dt) | (r.time > high + _SNAP * dt)) & (window is None)
             peak = float(np.max(np.abs(r.values[out]))) * r.units.to_si * abs(scale) if out.any() else 0.0
             span = {"record_pair_span": "common", "record_dropped_s": float(np.count_nonzero(out) * dt)}
             if r.units.quantity == "acceleration":
@@ -1028,9 +1030,10 @@ def _joined(raws, window, pair_span, scale):
             if out.any():
                 told.append(f"{r.path.name!r}: {np.count_nonzero(out) * dt:.4g} s"
                             + (f" (largest |a| {peak / G:.3g} g)" if r.units.quantity == "acceleration" else ""))
-        warnings.warn(f"{_what(raws)}: components of different lengths ({names}) run over the {high - low:.6g} s all "
-                      f"cover, {low:g} to {high:g} s (pair_span: common); dropped " + "; ".join(told),
-                      PairWarning, stacklevel=3)
+        if told:
+            warnings.warn(f"{_what(raws)}: components of different lengths ({names}) run over the {high - low:.6g} s "
+                          f"all cover, {low:g} to {high:g} s (pair_span: common); dropped " + "; ".join(told),
+                          PairWarning, stacklevel=3)
         return joined, [window if window is not None else (low, high)] * len(raws)
     not_acc = [r.path.name for r in raws if r.units.quantity != "acceleration"]
     if not_acc:

@@ -324,9 +324,18 @@ def test_pair_refuses_unequal_steps_and_joins_unequal_lengths(tmp_path):
                                            r"dropped 'x.AT2': 0.5 s"):
         pair = RecordPair.from_files([x, short])
     assert pair.npts == 250
-    # a window both cover gives them the same samples, as before
-    pair = RecordPair.from_files([x, short], window=(0.5, 2.0))
+    # a window both cover gives them the same samples, as before: each file's own over it, so nothing of the run
+    # is dropped, and the pair says no such thing (it said "dropped 'x.AT2': 0.5 s", which the window drops anyway)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pair = RecordPair.from_files([x, short], window=(0.5, 2.0))
     assert pair.npts == 151 and np.array_equal(pair.x.time, pair.y.time)
+    for record, path in ((pair.x, x), (pair.y, short)):
+        alone = Record.from_file(path, window=(0.5, 2.0))
+        assert np.array_equal(record.displacement_samples, alone.displacement_samples)
+    attrs = pair.attrs()
+    assert attrs["record_1_dropped_s"] == attrs["record_2_dropped_s"] == 0.0
+    assert attrs["record_1_pair_span"] == "common"
     with pytest.raises(ValueError, match=r"must share their step"):
         RecordPair.from_files([x, coarse], window=(0.5, 2.0))
 
