@@ -95,7 +95,7 @@ def test_a_study_window_outside_the_common_span_and_longest_on_a_displacement_ar
 
 
 # --- components not at right angles ---------------------------------------------------------------------------
-def test_components_85_degrees_apart_give_the_motion_back_and_the_tilt_of_the_orthogonal_pair(tmp_path):
+def test_components_85_degrees_apart_give_the_motion_back_and_the_tilt_of_the_orthogonal_pair():
     """Two sensors at azimuths 260 and 345 read the projections of one known motion (east, north) on their
     axes; resolved, they give that motion back to 1e-12, and the pad's tilt is the orthogonal pair's."""
     a, b = _accelerations()
