@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+from worker_exit import pytest_unconfigure  # noqa: F401  (a hook: each test worker ends at once)
 
 #: a value for ``changed`` that removes the key
 DELETE = object()
@@ -190,14 +191,3 @@ def pytest_collection_finish(session):
             raise pytest.UsageError(f"pytest-xdist dropped the xdist_group of {len(lost)} tests (e.g. {lost[0]}); "
                                     "install the versions in workflow/envs/constraints.txt")
 
-
-@pytest.hookimpl(trylast=True)
-def pytest_unconfigure(config):
-    """A pytest-xdist worker ends as soon as its session is over, without the interpreter's teardown (about
-    1 s with matplotlib, xarray, Numba and OpenSees loaded, which the controller waited for at the end of
-    every run). Its results went to the controller at the end of its session (pytest-xdist's
-    ``workerfinished``), before this hook, and its exit status is not read; only its output is flushed."""
-    if hasattr(config, "workerinput"):
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(0)
