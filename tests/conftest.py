@@ -190,4 +190,3 @@ def pytest_collection_finish(session):
         if lost:
             raise pytest.UsageError(f"pytest-xdist dropped the xdist_group of {len(lost)} tests (e.g. {lost[0]}); "
                                     "install the versions in workflow/envs/constraints.txt")
-
