@@ -9,9 +9,9 @@ import pytest
 
 from dccss.case import case_from
 from dccss.checks import CaseError
-from dccss.mechanics import structure
 from dccss.mechanics.friction import LAWS, TEMPERATURE, VELOCITY, VELOCITY_PRESSURE, row, surface_mu
 from dccss.mechanics.structure import Structure, StructureError, respond, solve
+from dccss.mechanics.structure.heat import plate_temperatures
 from dccss.paper.prototypes import DFP1
 from dccss.records import Record, RecordPair
 
@@ -123,8 +123,8 @@ def test_the_plates_temperature_under_a_constant_flux_is_the_half_space_solution
     for k in range(n):
         x = 1e-4 * (k + 1)  # a steady creep at 0.01 m/s, within the contact circle (0.04 m < 0.2 √π / 2)
         temperature[k + 1] = temperature[k]
-        structure._heated(k, time[k], time[k + 1], x - 1e-4, 0.0, x, 0.0, 1.0, law.tolist(), heat, temperature,
-                          k + 1)
+        plate_temperatures(k, time[k], time[k + 1], x - 1e-4, 0.0, x, 0.0, 1.0, law.tolist(), heat, temperature,
+                           k + 1)
     q = 0.05 * 2e7 * 0.01
     assert np.allclose(heat[:n, 2], q, rtol=1e-12) and np.array_equal(heat[:n, 1], time[1:])
     D, k = 4.44e-6, 18.0

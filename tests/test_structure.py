@@ -217,12 +217,13 @@ def test_the_circular_interaction_holds_at_every_step(mu, zeta):
 
 def _slide_alone(y0, end, load, stop):
     """The two-component integrator alone over [0, end] from y0 = (u, u̇), interpreted."""
-    from dccss.mechanics import structure
 
-    y, K = list(y0), [0.0] * ((structure.STAGES + 1) * structure.SIZE)
-    ended, when, _ = structure._integrate(y, end, 0.0, load, structure.UNIT_LAW.tolist(), False, stop,
-                                          structure.RTOL, structure.ATOL,
-                                          *structure._tableau(False), K, [0.0] * 4, [0.0] * 4)
+    from dccss.mechanics.structure import circular, integrator
+
+    y, K = list(y0), [0.0] * ((integrator.STAGES + 1) * integrator.SIZE)
+    ended, when, _ = integrator.integrate(y, end, 0.0, load, circular.UNIT_LAW.tolist(), False, stop,
+                                          integrator.RTOL, integrator.ATOL,
+                                          *integrator.tableau(False), K, [0.0] * 4, [0.0] * 4)
     return ended, when, np.array(y)
 
 
@@ -243,7 +244,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
     1e-12 m and m/s, and the same time of rest to 1e-10 s."""
     from scipy.integrate import solve_ivp
 
-    from dccss.mechanics.structure import ATOL, NONE, REST_SPEED, RTOL, STOP
+    from dccss.mechanics.structure.integrator import ATOL, NONE, REST_SPEED, RTOL, STOP
 
     load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0)
     y0 = [0.01, -0.02, 0.3, 0.1]
@@ -321,8 +322,8 @@ def test_the_one_component_response_compiled_equals_interpreted():
         ground = Ground.from_samples(t, a)
         for mu, zeta in ((0.0, 0.0), (0.0, 0.05), (0.03, 0.0), (0.08, 0.1)):
             args = (ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.3, zeta, mu * G)
-            interpreted = structure._line(*args, compiled=False)
-            compiled = structure._line(*args, compiled=True)
+            interpreted = structure.line_history(*args, compiled=False)
+            compiled = structure.line_history(*args, compiled=True)
             for x, y in zip(interpreted, compiled):
                 assert np.array_equal(x, y), (trial, mu, zeta)
             mixed += bool(interpreted[3].any() and not interpreted[3].all())  # stops and breakaways both
@@ -332,18 +333,18 @@ def test_the_one_component_response_compiled_equals_interpreted():
 def test_a_one_component_chatter_is_an_error_naming_the_time(monkeypatch):
     from dccss.mechanics import structure
 
-    monkeypatch.setattr(structure, "MAX_PHASES", 0)
+    monkeypatch.setattr(structure.exact, "MAX_PHASES", 0)
     ground = Ground.from_samples([0.0, 0.01, 0.02], [0.0, 1.0, 0.0])
     with pytest.raises(RuntimeError, match=r"more than 0 stick/slip phases in the sample interval at t = 0 s"):
-        structure._line(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=False)
+        structure.line_history(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=False)
 
 
 def test_a_two_component_step_that_cannot_meet_the_tolerance_is_an_error_naming_the_time(monkeypatch):
     from dccss.mechanics import structure
 
     monkeypatch.setenv("DCCSS_BACKEND", "python")
-    monkeypatch.setattr(structure, "RTOL", 1e-30)
-    monkeypatch.setattr(structure, "ATOL", 1e-40)
+    monkeypatch.setattr(structure.circular, "RTOL", 1e-30)
+    monkeypatch.setattr(structure.circular, "ATOL", 1e-40)
     with pytest.raises(RuntimeError, match=r"step fell below 1e-14 s in the sample interval at t = [0-9.]+ s"):
         _pair_response()
 
@@ -557,8 +558,8 @@ def test_the_two_component_integration_converges_with_its_tolerance(monkeypatch)
 
     pair = RecordPair.from_files([f"{RECORDS}/synthetic.AT2", f"{RECORDS}/synthetic_y.AT2"], scale=1.5)
     tight = solve(pair.ground_acceleration(), pair.time, L, 0.04, 0.02)
-    monkeypatch.setattr(structure, "RTOL", 1e-9)
-    monkeypatch.setattr(structure, "ATOL", 1e-11)
+    monkeypatch.setattr(structure.circular, "RTOL", 1e-9)
+    monkeypatch.setattr(structure.circular, "ATOL", 1e-11)
     loose = solve(pair.ground_acceleration(), pair.time, L, 0.04, 0.02)
     difference = np.max(np.abs(tight.stroke - loose.stroke))
     assert 0 < difference < 1e-7
@@ -606,10 +607,10 @@ def test_the_tableau_is_scipys_dop853_read_without_importing_scipy_integrate():
 
     from scipy.integrate import DOP853
 
-    from dccss.mechanics.structure import _dop853
+    from dccss.mechanics.structure.integrator import dop853_coefficients
 
-    for ours, theirs in zip(_dop853(), (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5), strict=True):
+    for ours, theirs in zip(dop853_coefficients(), (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5), strict=True):
         assert ours.dtype == theirs.dtype and np.array_equal(ours, theirs)
-    probe = ("import sys; from dccss.mechanics.structure import _tableau; _tableau(False); "
+    probe = ("import sys; from dccss.mechanics.structure.integrator import tableau; tableau(False); "
              "print('scipy.integrate' in sys.modules)")
     assert subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout == "False\n"

@@ -71,10 +71,10 @@ def test_the_integrator_with_a_constant_unit_normal_equals_todays_two_component_
     rec = _pair(window=(0.0, 4.0))
     ground = rec.ground_acceleration()
     refined, _ = ground.refined(rec.time)
-    plain = structure._plane(refined, OMEGA, 0.02, 0.04 * G, compiled=False)[:4]
+    plain = structure.plane_history(refined, OMEGA, 0.02, 0.04 * G, compiled=False)[:4]
     assert 0 < np.count_nonzero(plain[3]) < refined.time.size  # sticking and sliding
-    ones = structure._plane(refined._replace(v0=np.zeros(refined.a0.shape[0]), v1=np.zeros(refined.a0.shape[0])),
-                            OMEGA, 0.02, 0.04 * G, compiled=False)
+    ones = structure.plane_history(refined._replace(v0=np.zeros(refined.a0.shape[0]), v1=np.zeros(refined.a0.shape[0])),
+                                   OMEGA, 0.02, 0.04 * G, compiled=False)
     for a, b in zip(plain, ones):
         assert np.array_equal(a, b)
 

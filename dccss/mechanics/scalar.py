@@ -93,8 +93,8 @@ def is_cached(function, folder) -> bool:
 def source_digest(folder=Path(__file__).parent) -> str:
     """A digest of the Python sources in ``folder`` (the mechanics: every module a kernel may inline)."""
     digest = hashlib.sha256()
-    for source in sorted(folder.glob("*.py")):
-        digest.update(source.name.encode() + b"\0" + source.read_bytes())
+    for source in sorted(folder.rglob("*.py")):
+        digest.update(source.relative_to(folder).as_posix().encode() + b"\0" + source.read_bytes())
     return digest.hexdigest()[:16]
 
 

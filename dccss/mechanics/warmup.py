@@ -14,6 +14,7 @@ import numpy as np
 
 from . import compiled, registry, scalar, spatial, structure
 from .geometry import Geometry
+from .structure import circular, exact
 
 
 def _device():
@@ -32,8 +33,8 @@ def parts() -> dict:
     space = {f"spatial {name}": (registry.model(name).spatial,
                                  lambda name=name: spatial.run(name, _device(), np.array([[0.0, 0.0], [1e-3, 0.0]])))
              for name in registry.names(lambda entry: entry.spatial is not None)}
-    return {**planar, "structure plane": (structure.plane, lambda: structure.warm(("plane",))), **space,
-            "structure line": (structure.line, lambda: structure.warm(("line",)))}
+    return {**planar, "structure plane": (circular.plane, lambda: structure.warm(("plane",))), **space,
+            "structure line": (exact.line, lambda: structure.warm(("line",)))}
 
 
 def cold() -> list:
