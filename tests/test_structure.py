@@ -223,7 +223,7 @@ def _slide_alone(y0, end, load, stop):
     y, K = list(y0), [0.0] * ((integrator.STAGES + 1) * integrator.SIZE)
     ended, when, _ = integrator.integrate(y, end, 0.0, load, circular.UNIT_LAW.tolist(), False, stop,
                                           integrator.RTOL, integrator.ATOL,
-                                          *integrator.tableau(False), K, [0.0] * 4, [0.0] * 4)
+                                          *integrator.tableau(False), K, [0.0] * 4, [0.0] * 4, [])
     return ended, when, np.array(y)
 
 
@@ -246,7 +246,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
 
     from dccss.mechanics.structure.integrator import ATOL, NONE, REST_SPEED, RTOL, STOP
 
-    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0)
+    load = (0.3, -1.2, 2.0, 0.5, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0, 0.0, 0.0, 0.0)
     y0 = [0.01, -0.02, 0.3, 0.1]
     ended, when, y = _slide_alone(y0, 0.5, load, stop=False)
     ours = solve_ivp(_circular(load), (0.0, 0.5), y0, method="DOP853", rtol=RTOL, atol=ATOL)
@@ -255,7 +255,7 @@ def test_the_two_component_integrator_equals_scipy_on_a_curved_slide(zeta):
     turned = math.degrees(math.atan2(y[3], y[2]) - math.atan2(y0[3], y0[2]))
     assert abs(turned) > 30.0  # a curved path, not a line
 
-    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0)
+    load = (0.0, 0.0, 0.0, 0.0, OMEGA**2, 2 * zeta * OMEGA, 0.05 * G, 1.0, 0.0, 20.0, 20.0, 0.0, 0.0, 0.0)
     y0 = [0.05, -0.03, 0.2, 0.1]
 
     def rest(t, y):

@@ -256,3 +256,31 @@ def device_mu(law, speed, normal, t0, t1):
         r = law[s]
         mu += r[1] * r[3] * surface_mu(r, r[2] * speed, normal, t0 if s == 0 else t1)
     return mu
+
+
+@scalar.jit
+def surface_mu_slopes(r, speed, normal, temperature):
+    """dμ/dv (s/m) and dμ/d(N/W) of one surface's law (``surface_mu``'s arguments), the factor λ not applied:
+    what the articulated slider's two sliding surfaces need to share the stroke under a law."""
+    kind = r[0]
+    if kind == 0.0:
+        return 0.0, 0.0
+    decay = math.exp(-r[6] * speed)
+    if kind == 1.0:
+        return (r[5] - r[4]) * r[6] * decay, 0.0
+    pressure = r[7] * normal
+    if kind == 2.0:
+        fast, dfast = r[5], 0.0
+        if pressure > 0.0:
+            t = math.tanh(r[9] * pressure)
+            fast, dfast = r[5] - r[8] * t, -r[8] * r[9] * r[7] * (1.0 - t * t)
+        return (fast - r[4]) * r[6] * decay, dfast * (1.0 - decay)
+    kp, dkp = 1.0, 0.0
+    if r[11] != 0.0:
+        kp = 0.7 ** (0.02 * (pressure - r[10]) / 1e6)
+        dkp = kp * math.log(0.7) * 0.02 * r[7] / 1e6
+    kt = 0.789 * (0.7 ** (temperature / 50.0) + 0.4) if r[13] != 0.0 else 1.0
+    kv, dkv = 1.0, 0.0
+    if r[12] != 0.0:
+        kv, dkv = 1.0 - 0.5 * decay, 0.5 * r[6] * decay
+    return r[4] * kp * kt * dkv, r[4] * dkp * kt * kv

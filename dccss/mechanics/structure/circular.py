@@ -41,7 +41,7 @@ INTERVAL_WORK = 25
 
 
 @scalar.jit
-def _breakaway(d0x, d0y, d1x, d1y, friction, m0, m1, end):
+def breakaway(d0x, d0y, d1x, d1y, friction, m0, m1, end):
     """The first tau in (0, end) where |d0 + d1 tau| reaches ``friction`` (m0 + m1 tau) (a quadratic;
     m0 + m1 tau = N/W >= 0 on the interval), or -1."""
     f0, f1 = friction * m0, friction * m1
@@ -134,7 +134,7 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
             if not sliding:
                 # the breakaway value at the phase's start (it moves with N/W only under a pressure factor)
                 rest = device_mu(law, 0.0, max(m0, 0.0), t0, t1)
-                when = _breakaway(-b00 - w2 * m0 * x0, -b01 - w2 * m0 * x1, -b10 - w2 * m1 * x0, -b11 - w2 * m1 * x1,
+                when = breakaway(-b00 - w2 * m0 * x0, -b01 - w2 * m0 * x1, -b10 - w2 * m1 * x0, -b11 - w2 * m1 * x1,
                                   friction * rest * hold, m0, m1, end)
                 tau += when if when >= 0.0 else end
                 sliding = starting = when >= 0.0
@@ -146,9 +146,9 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
                 # vanishing time; until |u̇| reaches START_SPEED (in this interval or a later one) the
                 # friction is taken along the force (exact along a line), which spares the integrator
                 # the direction of a velocity that is only rounding
-                load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1)
+                load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1, 0.0, 0.0, 0.0)
                 ended, when, h_next = integrate(y, end, 0.0, load, law, True, False, rtol, atol, A, B, C, E3, E5,
-                                                 K, out, trial)
+                                                 K, out, trial, law[:0])
                 if ended == TOO_SHORT:
                     return FAILED, k
                 if ended == HELD:  # the force fell back within the friction: at rest again
@@ -161,9 +161,9 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
                 tau, end, h_next, starting = tau + when, end - when, 0.0, False  # moving
                 b00, b01 = b00 + b10 * when, b01 + b11 * when
                 m0 = m0 + m1 * when
-            load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1)
+            load = (b00, b01, b10, b11, w2, damp, friction, m0, m1, t0, t1, 0.0, 0.0, 0.0)
             ended, when, h_next = integrate(y, end, h_next, load, law, False, friction > 0.0, rtol, atol, A, B, C,
-                                             E3, E5, K, out, trial)
+                                             E3, E5, K, out, trial, law[:0])
             if ended == TOO_SHORT:
                 return FAILED, k
             if ended == STOP:  # at rest: the last REST_SPEED at the deceleration there, to first order

@@ -32,7 +32,7 @@ MAX_PHASES = 10_000
 
 
 @scalar.jit
-def _slide(u0, v0, p0, p1, omega, zeta, tau):
+def slide(u0, v0, p0, p1, omega, zeta, tau):
     """(u, v) at tau of ü + 2ζω u̇ + ω² u = p0 + p1 t from (u0, v0) at t = 0 (0 <= ζ < 1)."""
     beta = p1 / omega**2
     alpha = (p0 - 2 * zeta * omega * beta) / omega**2
@@ -46,13 +46,13 @@ def _slide(u0, v0, p0, p1, omega, zeta, tau):
 
 
 @scalar.jit
-def _stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
+def first_stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
     """The first tau in (0, tau_end] where sign * u̇ falls to 0 while sliding (sign = ±1), or -1."""
     pieces = max(1, math.ceil(omega * tau_end / 0.25))
     left = 0.0
     for i in range(1, pieces + 1):
         right = tau_end * i / pieces
-        if sign * _slide(u0, v0, p0, p1, omega, zeta, right)[1] <= 0.0:
+        if sign * slide(u0, v0, p0, p1, omega, zeta, right)[1] <= 0.0:
             return _bisect(u0, v0, p0, p1, omega, zeta, sign, left, right)
         # a dip to zero inside a piece: sign * ü changes from - to + within it (a start from rest
         # starts with sign * ü >= 0: at a breakaway it is 0 and growing, rounding aside)
@@ -70,7 +70,7 @@ def _stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
                     lo = mid
                 else:
                     hi = mid
-            if sign * _slide(u0, v0, p0, p1, omega, zeta, lo)[1] <= 0.0:
+            if sign * slide(u0, v0, p0, p1, omega, zeta, lo)[1] <= 0.0:
                 return _bisect(u0, v0, p0, p1, omega, zeta, sign, left, lo)
         left = right
     return -1.0
@@ -78,7 +78,7 @@ def _stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
 
 @scalar.jit
 def _acceleration(u0, v0, p0, p1, omega, zeta, tau):
-    u, v = _slide(u0, v0, p0, p1, omega, zeta, tau)
+    u, v = slide(u0, v0, p0, p1, omega, zeta, tau)
     return p0 + p1 * tau - 2 * zeta * omega * v - omega**2 * u
 
 
@@ -89,7 +89,7 @@ def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        if sign * _slide(u0, v0, p0, p1, omega, zeta, mid)[1] > 0.0:
+        if sign * slide(u0, v0, p0, p1, omega, zeta, mid)[1] > 0.0:
             lo = mid
         else:
             hi = mid
@@ -132,12 +132,12 @@ def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
             force = sign * friction
             p0, p1 = -b0 - force, -b1
             end = h - tau
-            when = -1.0 if friction == 0.0 else _stop(x, w, p0, p1, omega, zeta, sign, end)
+            when = -1.0 if friction == 0.0 else first_stop(x, w, p0, p1, omega, zeta, sign, end)
             if when < 0.0:
-                x, w = _slide(x, w, p0, p1, omega, zeta, end)
+                x, w = slide(x, w, p0, p1, omega, zeta, end)
                 tau = h
                 continue
-            x, _ = _slide(x, w, p0, p1, omega, zeta, when)
+            x, _ = slide(x, w, p0, p1, omega, zeta, when)
             w = 0.0
             tau += when
             demand = -(b0 + b1 * when) - omega**2 * x

@@ -30,8 +30,9 @@ RTOL, ATOL = 1e-12, 1e-14
 #: DOP853's stages, and the size of the state y = (u, u̇) in two components
 STAGES, SIZE = 12, 4
 #: what ends a slide: none (the interval's end), |u̇| falling to REST_SPEED (stop), or for a start from
-#: rest |u̇| reaching START_SPEED (moving) or the force falling back to μ g (held); a step too short
-NONE, STOP, MOVING, HELD, TOO_SHORT = 0, 1, 2, 3, 4
+#: rest |u̇| reaching START_SPEED (moving) or the force falling back to μ g (held); a step too short; the
+#: force reaching the other surface's friction (yield: an articulated slider's surface sliding alone)
+NONE, STOP, MOVING, HELD, TOO_SHORT, YIELD = 0, 1, 2, 3, 4, 5
 #: the step-size control (scipy's): safety factor, the bounds of a step's change, the error's exponent
 SAFETY, MIN_FACTOR, MAX_FACTOR, EXPONENT = 0.9, 0.2, 10.0, -1.0 / 8.0
 #: a step shorter than this (s) is a failure; an event is located to within BRACKET (s)
@@ -168,8 +169,24 @@ def _first_step(y, end, K, trial, load, law, start, rtol, atol):
 
 
 @scalar.jit
-def _g(event, t, y, load, law):
-    """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g N/W (HELD)."""
+def _g(event, t, y, load, law, start, other):
+    """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g N/W (HELD),
+    |F/N - p_i| - μ̄_i (YIELD: one surface of an articulated slider slides, y its own displacement u_j,
+    ``load[4]`` g / L_j; the other's p_i = u_i / L_i is load[11:13], its temperature load[13], its law
+    ``other``, at zero speed)."""
+    if event == YIELD:
+        if start:
+            d0, d1 = demand(t, y, load)
+        else:
+            d0, d1 = y[2], y[3]
+        size = math.sqrt(d0 * d0 + d1 * d1)
+        if size > 0.0:
+            d0, d1 = d0 / size, d1 / size
+        coef = law_coefficient(t, y, load, law)
+        f0 = y[0] * load[4] / load[6] + coef * d0 - load[11]
+        f1 = y[1] * load[4] / load[6] + coef * d1 - load[12]
+        n = normal_ratio(t, load)
+        return math.sqrt(f0 * f0 + f1 * f1) - device_mu(other, 0.0, n, load[13], load[13])
     if event == HELD:
         f0, f1 = demand(t, y, load)
         return math.sqrt(f0 * f0 + f1 * f1) - load[6] * law_coefficient(t, y, load, law) * normal_ratio(t, load)
@@ -179,8 +196,8 @@ def _g(event, t, y, load, law):
 
 @scalar.jit
 def _beyond(event, g):
-    """Whether g is past the event: STOP and HELD fall through zero, MOVING rises through it."""
-    return g >= 0.0 if event == MOVING else g <= 0.0
+    """Whether g is past the event: STOP and HELD fall through zero, MOVING and YIELD rise through it."""
+    return g >= 0.0 if event == MOVING or event == YIELD else g <= 0.0
 
 
 @scalar.jit
@@ -191,7 +208,7 @@ def _crosses(event, g_old, g_new):
 
 
 @scalar.jit
-def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C):
+def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C, other):
     """The length s in (0, h] of the step from (t, y) that reaches the event (bisection to BRACKET), the
     event being past at h and not at 0; ``out`` is scratch."""
     lo, hi = 0.0, h
@@ -200,7 +217,7 @@ def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C):
         if mid <= lo or mid >= hi:
             break
         _step(t, y, mid, K, out, trial, load, law, start, A, B, C)
-        if _beyond(event, _g(event, t + mid, out, load, law)):
+        if _beyond(event, _g(event, t + mid, out, load, law, start, other)):
             hi = mid
         else:
             lo = mid
@@ -208,9 +225,11 @@ def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C):
 
 
 @scalar.jit
-def integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial):
+def integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial, other):
     """DOP853 over [0, end] from y (overwritten with the state reached): (what ended it, when, the next
-    step). Events: STOP if ``stop``; MOVING and HELD for a ``start``; the earliest ends the slide."""
+    step). Events: STOP if ``stop``; MOVING and HELD for a ``start``; YIELD where ``other`` (the other
+    surface's law, one row; none for the rigid slider) has a row; the earliest ends the slide. ``load`` is
+    (b0x, b0y, b1x, b1y, ω², 2ζω, friction, n0, n1, t0, t1, p_ix, p_iy, t_i)."""
     t = 0.0
     _rhs(t, y, 0, K, load, law, start)
     if h <= 0.0:
@@ -234,13 +253,18 @@ def integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K,
                 break
             h = taken * max(MIN_FACTOR, SAFETY * error ** EXPONENT)
             rejected = True
-        crossed = (stop and _crosses(STOP, _g(STOP, t, y, load, law), _g(STOP, t_new, out, load, law)),
-                   start and _crosses(MOVING, _g(MOVING, t, y, load, law), _g(MOVING, t_new, out, load, law)),
-                   start and _crosses(HELD, _g(HELD, t, y, load, law), _g(HELD, t_new, out, load, law)))
+        crossed = (stop and _crosses(STOP, _g(STOP, t, y, load, law, start, other),
+                                     _g(STOP, t_new, out, load, law, start, other)),
+                   start and _crosses(MOVING, _g(MOVING, t, y, load, law, start, other),
+                                      _g(MOVING, t_new, out, load, law, start, other)),
+                   start and _crosses(HELD, _g(HELD, t, y, load, law, start, other),
+                                      _g(HELD, t_new, out, load, law, start, other)),
+                   False, len(other) > 0 and _crosses(YIELD, _g(YIELD, t, y, load, law, start, other),
+                                                      _g(YIELD, t_new, out, load, law, start, other)))
         first, length = NONE, taken
-        for event in (STOP, MOVING, HELD):
+        for event in (STOP, MOVING, HELD, YIELD):
             if crossed[event - 1]:
-                s = _locate(event, t, y, taken, K, out, trial, load, law, start, A, B, C)
+                s = _locate(event, t, y, taken, K, out, trial, load, law, start, A, B, C, other)
                 if first == NONE or s < length:
                     first, length = event, s
         if first != NONE:

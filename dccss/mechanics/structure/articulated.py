@@ -1,0 +1,468 @@
+"""The articulated slider's history in general: two components, any friction law, the vertical.
+
+The device is two pendulums in series (``series``): surface j slides or holds by its own law, and the
+phases are those of the exact one-component solution:
+
+* **at rest**, surface j holds while |f - p_j| <= μ̄_j(0) (1 + RTOL), f = -a_g / (g N/W) the force per
+  unit normal force the friction must supply, p_j = u_j / L_j; rest ends where f, the ratio of two
+  straight lines in t, leaves a circle: the first root of a quadratic (``circular.breakaway``), exact.
+  The surface whose circle it leaves slides, both where the other is within 1e-9 of its own;
+* **one surface slides** (j), the other holds: the rigid slider's circular interaction (``integrator``,
+  DOP853) with the pendulum length L_j and surface j's law, the stroke's origin at the other surface's
+  displacement; it ends at a stop (|u̇| falls to REST_SPEED; a start from rest takes the friction along
+  the force until |u̇| reaches START_SPEED, as the rigid slider's), or where F/N reaches the other
+  surface's circle (YIELD: both slide);
+* **both slide**: ``corner`` (Radau IIA on the state (u, u̇, δ, σ)), until |u̇| falls to REST_SPEED or
+  one surface stops (σ reaches 0 or 1). Both surfaces starting from rest together (a tie) start as the
+  rigid slider of their proportional split until |u̇| reaches START_SPEED.
+
+Under a temperature law each surface's plate heats by its own flux, from its own slider's travel
+(``heat.plate_temperature``), at the record's samples. Written in the scalar subset Numba compiles: the
+same bits compiled and interpreted.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import scalar
+from ..friction import device_mu, surface_mu
+from . import corner
+from .circular import breakaway
+from .exact import CHATTER, DONE, FAILED, MAX_PHASES
+from .heat import plate_temperature
+from .integrator import HELD, MOVING, NONE, REST_SPEED, STOP, TOO_SHORT, YIELD, integrate, law_coefficient
+from .series import BOTH, SLIDE1, SLIDE3, STUCK
+
+#: both surfaces start together where the other's force is within this (relative) of its friction
+TOGETHER = 1e-9
+#: Radau's tolerances for both surfaces sliding (relative; absolute, in m, m/s and rad)
+RADAU_RTOL, RADAU_ATOL = 1e-10, 1e-12
+#: Radau's step bounds: the shortest (s) before the phase fails, the first one tried
+RADAU_MIN, RADAU_FIRST = 1e-12, 1e-4
+
+
+@scalar.jit
+def _rest(fx, fy, p1x, p1y, p3x, p3y, r1, r3, hold):
+    """The phase at rest under the force f per unit normal force that the friction must supply: STUCK
+    where f is within both circles |f - p_j| <= r_j hold, else by where the friction takes it, the point of
+    the circles' intersection nearest to f: on circle 1 alone (SLIDE1), on circle 3 alone (SLIDE3), or on
+    both (BOTH; within TOGETHER of the other circle counts as on it)."""
+    d1 = math.sqrt((fx - p1x) ** 2 + (fy - p1y) ** 2)
+    d3 = math.sqrt((fx - p3x) ** 2 + (fy - p3y) ** 2)
+    if d1 <= r1 * hold and d3 <= r3 * hold:
+        return STUCK
+    on1, on3 = False, False  # the projection onto circle j lies within the other circle
+    if d1 > r1 * hold:
+        qx, qy = p1x + r1 * (fx - p1x) / d1, p1y + r1 * (fy - p1y) / d1
+        e3 = math.sqrt((qx - p3x) ** 2 + (qy - p3y) ** 2) - r3
+        if e3 <= r3 * (hold - 1.0):
+            if e3 >= -TOGETHER * r3:
+                return BOTH
+            on1 = True
+    if d3 > r3 * hold:
+        qx, qy = p3x + r3 * (fx - p3x) / d3, p3y + r3 * (fy - p3y) / d3
+        e1 = math.sqrt((qx - p1x) ** 2 + (qy - p1y) ** 2) - r1
+        if e1 <= r1 * (hold - 1.0):
+            if e1 >= -TOGETHER * r1:
+                return BOTH
+            on3 = True
+    if on1 and not on3:
+        return SLIDE1
+    if on3 and not on1:
+        return SLIDE3
+    return BOTH
+
+
+@scalar.jit
+def _corner(wx, wy, ex, ey, m1, m3, L1, L3, coulomb):
+    """(phase, δ, σ) of both surfaces sliding with p_1 - p_3 = w and u̇ along e: the triangle
+    μ̄_3 z_3 - μ̄_1 z_1 = w oriented so that e lies between z_3 and z_1 (BOTH), or SLIDE1 / SLIDE3 where e
+    lies outside both orientations' cones (beyond z_1's side: surface 3 holds). At δ = 0 under Coulomb
+    friction σ is the proportional split L_1 / L (the algebraic condition)."""
+    w2 = wx * wx + wy * wy
+    c = (m1 * m1 + m3 * m3 - w2) / (2.0 * m1 * m3)
+    c = min(1.0, max(-1.0, c))
+    size = math.acos(c)
+    if size == 0.0:
+        # z_1 = z_3 = -w / |w| (m1 > m3) or w / |w|; collinear with e where the phase is possible
+        return BOTH, 0.0, L1 / (L1 + L3) if coulomb else 0.5
+    best, best_sigma, best_delta = -1.0, 0.0, 0.0
+    for orientation in (1.0, -1.0):
+        delta = orientation * size
+        cd, sd = math.cos(delta), math.sin(delta)
+        # (m3 I - m1 R(δ)) z3 = w
+        a, b = m3 - m1 * cd, m1 * sd  # matrix [[a, b], [-b, a]]
+        det = a * a + b * b
+        z3x, z3y = (a * wx - b * wy) / det, (b * wx + a * wy) / det
+        # the angle from z3 to e, as a fraction of δ
+        ang = math.atan2(z3x * ey - z3y * ex, z3x * ex + z3y * ey)
+        sigma = ang / delta
+        if 0.0 <= sigma <= 1.0:
+            return BOTH, delta, sigma
+        # how far outside: keep the nearer for the one-surface decision
+        miss = -sigma if sigma < 0.0 else sigma - 1.0
+        if best < 0.0 or miss < best:
+            best, best_sigma, best_delta = miss, sigma, delta
+    return (SLIDE1 if best_sigma > 1.0 else SLIDE3), best_delta, best_sigma
+
+
+def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp, rtol, atol, A, B, C, E3, E5,
+                K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, phase, force, mu, heat, temperature):
+    """The articulated slider's history at the interval ends (the module docstring) into u, u̇, u_1 (n, 2),
+    the phase (n), F/W (n, 2), each surface's coefficient μ_j (n, 2; λ included, at its sliding speed)
+    and temperature (n, 2); ``rows`` the surfaces' laws (weight and ratio R^j / L_j), ``rigid_rows`` the
+    same laws as the rigid slider's (R^j / L: both surfaces starting together), N/W on interval k
+    n0[k] + n1[k] (t - t_k): (DONE, 0), or (CHATTER or FAILED, the interval)."""
+    n = time.size
+    L = L1 + L3
+    hold = 1.0 + rtol
+    heats = rows[0][0] == 3.0 or rows[1][0] == 3.0
+    t1, t3 = rows[0][17], rows[1][17]
+    temperature[0, 0], temperature[0, 1] = t1, t3
+    x0, x1, w0, w1, q0, q1 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # u, u̇, u_1
+    delta, sigma = 0.0, 0.0
+    state, starting = STUCK, False
+    h_next, h_radau = 0.0, 0.0
+    heated, since = 0, 0
+    p = np.zeros(12)
+    p[0], p[1], p[2], p[3] = L1, L3, g, damp
+    m = max(n0[0], 0.0)
+    if m > 0.0:
+        state = _rest(-a0[0, 0] / (g * m), -a0[0, 1] / (g * m), 0.0, 0.0, 0.0, 0.0,
+                      device_mu(rows[0:1], 0.0, m, t1, t1), device_mu(rows[1:2], 0.0, m, t3, t3), hold)
+        starting = state != STUCK
+    _record(0, state, x0, x1, w0, w1, q0, q1, delta, sigma, -a0[0, 0], -a0[0, 1], m, p, rows, t1, t3, g, ys, u, v,
+            u1, phase, force, mu)
+    for k in range(n - 1):
+        h = time[k + 1] - time[k]
+        tau, phases = 0.0, 0
+        p[10], p[11] = t1, t3
+        while tau < h:
+            phases += 1
+            if phases > MAX_PHASES:
+                return CHATTER, k
+            b00, b01 = a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau
+            b10, b11 = a1[k, 0], a1[k, 1]
+            m0, m1 = n0[k] + n1[k] * tau, n1[k]
+            end = h - tau
+            if state == STUCK:
+                r1 = g * device_mu(rows[0:1], 0.0, max(m0, 0.0), t1, t1) * hold
+                r3 = g * device_mu(rows[1:2], 0.0, max(m0, 0.0), t3, t3) * hold
+                g1, g3 = g / L1, g / L3
+                y1x, y1y, y3x, y3y = q0, q1, x0 - q0, x1 - q1
+                when1 = breakaway(-b00 - g1 * m0 * y1x, -b01 - g1 * m0 * y1y, -b10 - g1 * m1 * y1x,
+                                  -b11 - g1 * m1 * y1y, r1, m0, m1, end)
+                when3 = breakaway(-b00 - g3 * m0 * y3x, -b01 - g3 * m0 * y3y, -b10 - g3 * m1 * y3x,
+                                  -b11 - g3 * m1 * y3y, r3, m0, m1, end)
+                if when1 < 0.0 and when3 < 0.0:
+                    tau = h
+                    continue
+                first = SLIDE1 if when3 < 0.0 or (0.0 <= when1 <= when3) else SLIDE3
+                when = when1 if first == SLIDE1 else when3
+                tau += when
+                mm = max(m0 + m1 * when, 0.0)
+                state, starting, h_next = first, True, 0.0
+                if mm <= 0.0:  # lifted off: the upper half goes with the superstructure
+                    state = SLIDE3
+                    continue
+                # the other surface within TOGETHER of its friction: both start together
+                fx, fy = -(b00 + b10 * when) / (g * mm), -(b01 + b11 * when) / (g * mm)
+                ox, oy, Lo, ro = (y3x, y3y, L3, r3) if first == SLIDE1 else (y1x, y1y, L1, r1)
+                radius = ro / (g * hold)
+                if math.sqrt((fx - ox / Lo) ** 2 + (fy - oy / Lo) ** 2) >= radius * (1.0 - TOGETHER):
+                    state = BOTH
+                continue
+            if state == SLIDE1 or state == SLIDE3:
+                lower = state == SLIDE1
+                Lj = L1 if lower else L3
+                Li = L3 if lower else L1
+                ix, iy = (x0 - q0, x1 - q1) if lower else (q0, q1)  # the holding surface's displacement
+                y4[0], y4[1] = x0 - ix, x1 - iy
+                y4[2], y4[3] = w0, w1
+                tj, ti = (t1, t3) if lower else (t3, t1)
+                law = rows[0:1] if lower else rows[1:2]
+                other = rows[1:2] if lower else rows[0:1]
+                load = (b00, b01, b10, b11, g / Lj, damp, g, m0, m1, tj, tj, ix / Li, iy / Li, ti)
+                ended, when, h_next = integrate(y4, end, h_next if not starting else 0.0, load, law, starting,
+                                                not starting, rtol, atol, A, B, C, E3, E5, K, out, trial, other)
+                if ended == TOO_SHORT:
+                    return FAILED, k
+                x0, x1, w0, w1 = y4[0] + ix, y4[1] + iy, y4[2], y4[3]
+                if lower:
+                    q0, q1 = y4[0], y4[1]
+                tau += when
+                if ended == NONE:
+                    tau = h
+                    continue
+                mm = max(m0 + m1 * when, 0.0)
+                if ended == HELD:
+                    w0, w1, state, starting, h_next = 0.0, 0.0, STUCK, False, 0.0
+                    continue
+                if ended == MOVING:
+                    starting, h_next = False, 0.0
+                    continue
+                if ended == STOP:  # at rest (the last REST_SPEED's travel, under 1e-17 m, left out)
+                    w0, w1 = 0.0, 0.0
+                    state = _at_rest(b00 + b10 * when, b01 + b11 * when, mm, x0, x1, q0, q1, L1, L3, g, rows, t1,
+                                     t3, hold)
+                    starting, h_next = state != STUCK, 0.0
+                    continue
+                # YIELD: both slide
+                if starting:  # still starting from rest: both start together
+                    state, h_next = BOTH, 0.0
+                    continue
+                speed = math.sqrt(w0 * w0 + w1 * w1)
+                ex, ey = w0 / speed, w1 / speed
+                mj = law_coefficient(when, y4, load, law)
+                fx, fy = y4[0] / Lj + mj * ex, y4[1] / Lj + mj * ey
+                zix, ziy = fx - ix / Li, fy - iy / Li
+                size = math.sqrt(zix * zix + ziy * ziy)
+                zix, ziy = zix / size, ziy / size
+                z1x, z1y, z3x, z3y = (ex, ey, zix, ziy) if lower else (zix, ziy, ex, ey)
+                delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
+                sigma = 1.0 if lower else 0.0
+                coulomb = rows[0][0] == 0.0 and rows[1][0] == 0.0
+                if delta == 0.0 and coulomb:
+                    sigma = L1 / L
+                state, starting, h_radau = BOTH, False, 0.0
+                continue
+            # both slide
+            if starting:
+                # from rest together: the rigid slider of the proportional split until |u̇| reaches START_SPEED
+                y4[0], y4[1], y4[2], y4[3] = x0, x1, w0, w1
+                load = (b00, b01, b10, b11, g / L, damp, g, m0, m1, t1, t3, 0.0, 0.0, 0.0)
+                ended, when, _ = integrate(y4, end, 0.0, load, rigid_rows, True, False, rtol, atol, A, B, C, E3, E5,
+                                           K, out, trial, rigid_rows[:0])
+                if ended == TOO_SHORT:
+                    return FAILED, k
+                dx, dy = y4[0] - x0, y4[1] - x1
+                q0, q1 = q0 + L1 / L * dx, q1 + L1 / L * dy
+                x0, x1, w0, w1 = y4[0], y4[1], y4[2], y4[3]
+                tau += when
+                if ended == NONE:
+                    tau = h
+                    continue
+                if ended == HELD:
+                    w0, w1, state, starting = 0.0, 0.0, STUCK, False
+                    continue
+                # moving: both surfaces' corner, or one surface only
+                speed = math.sqrt(w0 * w0 + w1 * w1)
+                mm = max(m0 + m1 * when, 0.0)
+                c1m = device_mu(rows[0:1], 0.0, mm, t1, t1)
+                c3m = device_mu(rows[1:2], 0.0, mm, t3, t3)
+                coulomb = rows[0][0] == 0.0 and rows[1][0] == 0.0
+                state, delta, sigma = _corner(q0 / L1 - (x0 - q0) / L3, q1 / L1 - (x1 - q1) / L3, w0 / speed,
+                                              w1 / speed, c1m, c3m, L1, L3, coulomb)
+                starting, h_radau, h_next = False, 0.0, 0.0
+                continue
+            y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
+            p[4], p[5], p[6], p[7], p[8], p[9] = b00, b01, b10, b11, m0, m1
+            ended, when, h_radau = _both(y6, ys, end, h_radau, p, rows, k6, work, Z)
+            if ended == TOO_SHORT:
+                return FAILED, k
+            x0, x1, w0, w1, delta, sigma = y6[0], y6[1], y6[2], y6[3], y6[4], y6[5]
+            shape = corner.shape(y6, p, rows, when)
+            q0, q1 = L1 * (shape[9] - shape[7] * shape[1]), L1 * (shape[10] - shape[7] * shape[2])
+            tau += when
+            if ended == NONE:
+                tau = h
+                continue
+            mm = max(m0 + m1 * when, 0.0)
+            if ended == STOP:
+                w0, w1 = 0.0, 0.0
+                state = _at_rest(b00 + b10 * when, b01 + b11 * when, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold)
+                starting, h_next = state != STUCK, 0.0
+                continue
+            # one surface stopped: σ = 1 (surface 3 holds) or 0 (surface 1 holds)
+            state = SLIDE1 if sigma >= 1.0 else SLIDE3
+            starting, h_next = False, 0.0
+        m = max(n0[k] + n1[k] * h, 0.0)
+        if heats:
+            temperature[k + 1, 0], temperature[k + 1, 1] = t1, t3
+            if samples[k + 1] or k + 2 == n:  # the end of a heat interval
+                normal = max(0.5 * (n0[since] + m), 0.0)
+                if rows[0][0] == 3.0:
+                    t1 = plate_temperature(heated, time[since], time[k + 1], u1[since, 0], u1[since, 1], q0, q1,
+                                           normal, rows[0], 0, heat, temperature, k + 1)
+                if rows[1][0] == 3.0:
+                    t3 = plate_temperature(heated, time[since], time[k + 1], u[since, 0] - u1[since, 0],
+                                           u[since, 1] - u1[since, 1], x0 - q0, x1 - q1, normal, rows[1], 1, heat,
+                                           temperature, k + 1)
+                heated, since = heated + 1, k + 1
+        _record(k + 1, state, x0, x1, w0, w1, q0, q1, delta, sigma, -(a0[k, 0] + a1[k, 0] * h),
+                -(a0[k, 1] + a1[k, 1] * h), m, p, rows, t1, t3, g, ys, u, v, u1, phase, force, mu)
+    return DONE, 0
+
+
+@scalar.jit
+def _at_rest(bx, by, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold):
+    """The phase at rest (u̇ = 0) under the ground's acceleration b, N/W mm."""
+    if mm <= 0.0:
+        return STUCK if bx == 0.0 and by == 0.0 else SLIDE3
+    r1 = device_mu(rows[0:1], 0.0, mm, t1, t1)
+    r3 = device_mu(rows[1:2], 0.0, mm, t3, t3)
+    return _rest(-bx / (g * mm), -by / (g * mm), q0 / L1, q1 / L1, (x0 - q0) / L3, (x1 - q1) / L3, r1, r3, hold)
+
+
+@scalar.jit
+def _both(y, y0, end, h, p, rows, k0, work, Z):
+    """Radau over [0, end] from y (overwritten): (what ended it: NONE, STOP, YIELD (σ reached 0 or 1) or
+    TOO_SHORT, when, the next step)."""
+    t = 0.0
+    F, Mb = work[0], work[1]
+    if h <= 0.0:
+        h = min(RADAU_FIRST, end)
+    corner.system(t, y, p, rows, F, Mb)
+    for i in range(4):
+        k0[i] = F[i]
+    k0[4], k0[5] = 0.0, 0.0
+    first = True
+    while t < end:
+        taken = min(h, end - t)
+        if taken < RADAU_MIN:
+            return TOO_SHORT, t, h
+        for i in range(corner.N):
+            y0[i] = y[i]
+        status, error, iterations = corner.radau_step(t, y0, taken, p, rows, k0, RADAU_RTOL, RADAU_ATOL, first, Z, work)
+        if status != 0:
+            h = 0.5 * taken
+            continue
+        factor = 0.9 * (1.0 + 2.0 * corner.NEWTON) / (iterations + 2.0 * corner.NEWTON)
+        quotient = max(1.0 / 8.0, min(5.0, error ** 0.25 / factor))
+        if error > 1.0:
+            h = taken / quotient
+            first = False
+            continue
+        first = False
+        # the events at the step's end: a stop, or a surface stopping (σ out of [0, 1])
+        speed = math.sqrt((y0[2] + Z[14]) ** 2 + (y0[3] + Z[15]) ** 2)
+        sig = y0[5] + Z[17]
+        event = NONE
+        if speed <= REST_SPEED:
+            event = STOP
+        elif sig <= 0.0 or sig >= 1.0:
+            event = YIELD
+        if event == NONE:
+            for i in range(corner.N):
+                y[i] = y0[i] + Z[2 * corner.N + i]
+                acc = 0.0
+                for j in range(corner.S):
+                    acc += corner.W[2, j] * Z[j * corner.N + i]
+                k0[i] = acc / taken
+            t += taken
+            h = taken / quotient
+            continue
+        # locate it on the collocation polynomial, then step there
+        lo, hi = 0.0, 1.0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
+            s = corner.dense(y0, Z, mid, 5)
+            past = (math.sqrt(vx * vx + vy * vy) <= REST_SPEED) if event == STOP else (s <= 0.0 or s >= 1.0)
+            if past:
+                hi = mid
+            else:
+                lo = mid
+        length = hi * taken
+        if length > RADAU_MIN:
+            status, error, iterations = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
+                                                          False, Z, work)
+            if status != 0:
+                return TOO_SHORT, t, h
+            for i in range(corner.N):
+                y[i] = y0[i] + Z[2 * corner.N + i]
+        if event == YIELD:
+            y[5] = 1.0 if y[5] >= 0.5 else 0.0
+        return event, t + length, h
+    return NONE, end, h
+
+
+@scalar.jit
+def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, t1, t3, g, y, u, v, u1, phase,
+            force, mu):
+    """Row k of the history: the state, F/W (the demand -a_g / g at rest) and each surface's μ_j."""
+    u[k, 0], u[k, 1], v[k, 0], v[k, 1], u1[k, 0], u1[k, 1] = x0, x1, w0, w1, q0, q1
+    phase[k] = state
+    speed = math.sqrt(w0 * w0 + w1 * w1)
+    L1, L3 = p[0], p[1]
+    if state == STUCK:
+        force[k, 0], force[k, 1] = dx / g, dy / g
+        mu[k, 0] = rows[0][3] * surface_mu(rows[0], 0.0, m, t1)
+        mu[k, 1] = rows[1][3] * surface_mu(rows[1], 0.0, m, t3)
+        return
+    if state == BOTH and speed > 0.0:
+        y[0], y[1], y[2], y[3], y[4], y[5] = x0, x1, w0, w1, delta, sigma
+        p[8], p[9] = m, 0.0
+        n, z1x, z1y, z3x, z3y, s1, s3, m1, m3, fx, fy = corner.shape(y, p, rows, 0.0)
+        force[k, 0], force[k, 1] = m * fx, m * fy
+        mu[k, 0] = rows[0][3] * surface_mu(rows[0], rows[0][2] * s1, m, t1)
+        mu[k, 1] = rows[1][3] * surface_mu(rows[1], rows[1][2] * s3, m, t3)
+        return
+    lower = state == SLIDE1 or state == BOTH
+    j = 0 if lower else 1
+    Lj = L1 if lower else L3
+    yx, yy = (q0, q1) if lower else (x0 - q0, x1 - q1)
+    ex, ey = (w0 / speed, w1 / speed) if speed > 0.0 else (0.0, 0.0)
+    tj = t1 if lower else t3
+    cj = rows[j][1] * rows[j][3] * surface_mu(rows[j], rows[j][2] * speed, m, tj)
+    force[k, 0], force[k, 1] = m * (yx / Lj + cj * ex), m * (yy / Lj + cj * ey)
+    mu[k, j] = rows[j][3] * surface_mu(rows[j], rows[j][2] * speed, m, tj)
+    i = 1 - j
+    mu[k, i] = rows[i][3] * surface_mu(rows[i], 0.0, m, t3 if i == 1 else t1)
+
+
+#: the cost of a sample interval interpreted, in the planar kernels' case-steps (``backend.choose``)
+INTERVAL_WORK = 100
+
+
+def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, compiled=None):
+    """The articulated slider's history at the interval ends of ``ground`` (``Ground``, one component run as
+    the first of two): u, u̇, u_1 (n, 2), the phase (n), F/W (n, 2), each surface's μ_j and temperature (n, 2);
+    ``rows`` the surfaces' laws (``Structure.rows``), ``rigid_rows`` the rigid slider's, ``samples`` whether
+    each interval end is one of the record's samples (the heat intervals; default: all); ``compiled`` None:
+    compiled for a long record (``backend``), interpreted for a short one."""
+    from .. import backend
+    from .inputs import G
+    from .integrator import ATOL, RTOL, SIZE, STAGES, tableau
+
+    time, a0, a1 = ground.time, ground.a0, ground.a1
+    if a0.shape[1] == 1:
+        a0, a1 = np.column_stack([a0, np.zeros_like(a0)]), np.column_stack([a1, np.zeros_like(a1)])
+    if ground.v0 is None:
+        n0, n1 = np.ones(time.size - 1), np.zeros(time.size - 1)
+    else:
+        n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
+    n = time.size
+    rows = np.ascontiguousarray(rows, dtype=float)
+    heats = bool(np.any(rows[:, 0] == 3.0))
+    if compiled is None:
+        compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
+    run = scalar.kernel(articulated) if compiled else articulated
+    work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
+    if not compiled:
+        work = tuple(w.tolist() for w in work)
+    u, v, u1, force = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
+    phase = np.zeros(n, dtype=np.int64)
+    heat, temperature, mu = np.zeros((n, 4)), np.zeros((n, 2)), np.zeros((n, 2))
+    samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
+    law = rows if compiled else rows.tolist()
+    rigid = np.ascontiguousarray(rigid_rows, dtype=float)
+    omega = math.sqrt(G / (L1 + L3))
+    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
+                    np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
+                    np.ascontiguousarray(n1, dtype=float), law, rigid if compiled else rigid.tolist(), samples,
+                    float(L1), float(L3), G, 2.0 * float(zeta) * omega, float(RTOL), float(ATOL), *tableau(compiled),
+                    *work, corner.workspace(), np.zeros(corner.S * corner.N), np.zeros(corner.N),
+                    np.zeros(corner.N), np.zeros(corner.N), u, v, u1, phase, force, mu, heat, temperature)
+    if status == CHATTER:
+        from .exact import chatter
+
+        raise chatter(time[k])
+    if status == FAILED:
+        raise RuntimeError(f"structure: the articulated slider's integration failed (its step fell below the "
+                           f"smallest) in the sample interval at t = {time[k]:g} s; report the record and the "
+                           f"structure")
+    return u, v, u1, phase, force, mu, temperature

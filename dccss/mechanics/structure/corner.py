@@ -1,0 +1,353 @@
+"""The articulated slider with both surfaces sliding: the equations and their implicit integration.
+
+While both surfaces slide (``series``), the force F/W per unit normal force f is the same on both,
+f = p_j + μ̄_j z_j with p_j = u_j / L_j, and each surface slides along its friction, u̇_j = s_j z_j
+(s_j >= 0). Geometrically f is a corner of the two friction circles |f - p_j| = μ̄_j, and the stroke's
+velocity u̇ = s_1 z_1 + s_3 z_3 lies in the cone of their directions. The state is described by
+(u, u̇, δ, σ): δ the signed angle from z_3 to z_1, σ in [0, 1] where u̇ sits in that cone
+(z_3 at the angle -σδ from u̇, z_1 at (1 - σ)δ), so that
+
+    s_1 = |u̇| sin(σδ) / sin δ,   s_3 = |u̇| sin((1 - σ)δ) / sin δ,
+    f = (u + L_1 μ̄_1 z_1 + L_3 μ̄_3 z_3) / L,   u_1 = L_1 (f - μ̄_1 z_1),
+
+μ̄_j taken at the surface's speed s_j (its law), N/W and temperature. The flow u̇_j = s_j z_j, with
+p_1 - p_3 = μ̄_3 z_3 - μ̄_1 z_1, gives two equations linear in (δ̇, σ̇):
+
+    d/dt (μ̄_3 z_3 - μ̄_1 z_1) = s_1 z_1 / L_1 - s_3 z_3 / L_3,
+
+written on u̇'s direction and its normal. Every coefficient is smooth through δ = 0 (the ratios
+sin(σδ) / sin δ as sinc ratios). Where δ = 0 and the friction is Coulomb's, the first equation loses
+σ̇ and becomes the algebraic condition s_1 / L_1 = s_3 / L_3 (the proportional split); near δ = 0, or
+where a law's μ hardly changes with the speed, σ relaxes to that split within a time of order
+δ² L / |u̇| (or L dμ̄/ds): the system is stiff, of index 1 at the collinear state. It is therefore
+integrated as M(y) ẏ = F(y, t) by the three-stage Radau IIA method (order 5, stiffly accurate; Hairer
+and Wanner's RADAU5 error estimate and step control, simplified Newton with a Jacobian by finite
+differences), which takes both the stiff and the algebraic case in its stride. The phase ends where
+|u̇| falls to REST_SPEED (a stop) or σ reaches 0 (surface 1 stops: s_1 = 0) or 1 (surface 3 stops),
+located on the collocation polynomial and stepped to exactly.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import scalar
+from ..friction import surface_mu, surface_mu_slopes
+
+#: the state's size (u, u̇, δ, σ) and the stages
+N, S = 6, 3
+SQ6 = math.sqrt(6.0)
+#: Radau IIA's nodes, the inverse of its matrix A, RADAU5's error weights and γ = 1 / its real eigenvalue
+C = np.array([(4.0 - SQ6) / 10.0, (4.0 + SQ6) / 10.0, 1.0])
+A = np.array([[(88.0 - 7.0 * SQ6) / 360.0, (296.0 - 169.0 * SQ6) / 1800.0, (-2.0 + 3.0 * SQ6) / 225.0],
+              [(296.0 + 169.0 * SQ6) / 1800.0, (88.0 + 7.0 * SQ6) / 360.0, (-2.0 - 3.0 * SQ6) / 225.0],
+              [(16.0 - SQ6) / 36.0, (16.0 + SQ6) / 36.0, 1.0 / 9.0]])
+W = np.linalg.inv(A)
+DD = np.array([-(13.0 + 7.0 * SQ6) / 3.0, (-13.0 + 7.0 * SQ6) / 3.0, -1.0 / 3.0])
+GAMMA = 1.0 / ((6.0 + 81.0 ** (1.0 / 3.0) - 9.0 ** (1.0 / 3.0)) / 30.0)
+#: Newton: at most this many iterations a step
+NEWTON = 7
+
+
+@scalar.jit
+def sinc(x):
+    """sin x / x (1 at 0)."""
+    if abs(x) < 1e-4:
+        x2 = x * x
+        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0
+    return math.sin(x) / x
+
+
+@scalar.jit
+def dsinc(x):
+    """d(sin x / x)/dx."""
+    if abs(x) < 1e-4:
+        return -x / 3.0 + x * x * x / 30.0
+    return (x * math.cos(x) - math.sin(x)) / (x * x)
+
+
+@scalar.jit
+def coefficient(r, s, n, T):
+    """A surface's force-level coefficient μ̄ = weight λ μ(ratio s) at its hinge speed s = |u̇_j| (m/s), N/W n
+    and temperature T (°C) (its law's row r: weight R^j / L_j, ratio R^j / L_j), and dμ̄/ds, dμ̄/dn."""
+    scale = r[1] * r[3]
+    mu = surface_mu(r, r[2] * s, n, T)
+    ds, dn = surface_mu_slopes(r, r[2] * s, n, T)
+    return scale * mu, scale * r[2] * ds, scale * dn
+
+
+@scalar.jit
+def shape(y, p, rows, t):
+    """What the state y = (u, u̇, δ, σ) at t says: (n, z1x, z1y, z3x, z3y, s1, s3, μ̄1, μ̄3, fx, fy): N/W, the
+    surfaces' friction directions and hinge speeds, their coefficients and f = F/W / (N/W)."""
+    L1, L3 = p[0], p[1]
+    n = max(p[8] + p[9] * t, 0.0)
+    sp = math.sqrt(y[2] * y[2] + y[3] * y[3])
+    ex, ey = y[2] / sp, y[3] / sp
+    delta, sigma = y[4], y[5]
+    c3, s3a = math.cos(-sigma * delta), math.sin(-sigma * delta)
+    c1, s1a = math.cos((1.0 - sigma) * delta), math.sin((1.0 - sigma) * delta)
+    z3x, z3y = ex * c3 - ey * s3a, ey * c3 + ex * s3a
+    z1x, z1y = ex * c1 - ey * s1a, ey * c1 + ex * s1a
+    sd = sinc(delta)
+    s1 = sp * sigma * sinc(sigma * delta) / sd
+    s3 = sp * (1.0 - sigma) * sinc((1.0 - sigma) * delta) / sd
+    m1 = coefficient(rows[0], s1, n, p[10])[0]
+    m3 = coefficient(rows[1], s3, n, p[11])[0]
+    L = L1 + L3
+    fx = (y[0] + L1 * m1 * z1x + L3 * m3 * z3x) / L
+    fy = (y[1] + L1 * m1 * z1y + L3 * m3 * z3y) / L
+    return n, z1x, z1y, z3x, z3y, s1, s3, m1, m3, fx, fy
+
+
+@scalar.jit
+def system(t, y, p, rows, F, M):
+    """F(y, t) (6) and the 2 x 2 block M of (δ, σ) (row-major, 4) of M(y) ẏ = F at t (from the phase's
+    origin); p = (L1, L3, g, 2ζω, b0x, b0y, b1x, b1y, n0, n1, T1, T3), the ground's acceleration
+    b0 + b1 t and N/W = n0 + n1 t (0 where negative); ``rows`` the surfaces' laws (1, 3)."""
+    L1, L3, g, damp = p[0], p[1], p[2], p[3]
+    raw = p[8] + p[9] * t
+    n = max(raw, 0.0)
+    dn = p[9] if raw > 0.0 else 0.0
+    sp = math.sqrt(y[2] * y[2] + y[3] * y[3])
+    ex, ey = y[2] / sp, y[3] / sp
+    qx, qy = -ey, ex
+    delta, sigma = y[4], y[5]
+    c3, s3a = math.cos(-sigma * delta), math.sin(-sigma * delta)
+    c1, s1a = math.cos((1.0 - sigma) * delta), math.sin((1.0 - sigma) * delta)
+    z3x, z3y = ex * c3 - ey * s3a, ey * c3 + ex * s3a
+    z1x, z1y = ex * c1 - ey * s1a, ey * c1 + ex * s1a
+    sd, dsd = sinc(delta), dsinc(delta)
+    a1, a3 = sigma * delta, (1.0 - sigma) * delta
+    q1, q3 = sinc(a1) / sd, sinc(a3) / sd
+    s1, s3 = sp * sigma * q1, sp * (1.0 - sigma) * q3
+    m1, m1s, m1n = coefficient(rows[0], s1, n, p[10])
+    m3, m3s, m3n = coefficient(rows[1], s3, n, p[11])
+    L = L1 + L3
+    fx = (y[0] + L1 * m1 * z1x + L3 * m3 * z3x) / L
+    fy = (y[1] + L1 * m1 * z1y + L3 * m3 * z3y) / L
+    accx = -(p[4] + p[6] * t) - damp * y[2] - g * n * fx
+    accy = -(p[5] + p[7] * t) - damp * y[3] - g * n * fy
+    dsp = ex * accx + ey * accy  # d|u̇|/dt
+    dphi = (qx * accx + qy * accy) / sp  # how fast u̇ turns
+    # the hinge speeds' derivatives: ṡ_j = (∂s_j/∂|u̇|) d|u̇|/dt + (∂s_j/∂σ) σ̇ + (∂s_j/∂δ) δ̇
+    d1sig = sp * (q1 + a1 * dsinc(a1) / sd)
+    d3sig = -sp * (q3 + a3 * dsinc(a3) / sd)
+    d1del = sp * sigma * (sigma * dsinc(a1) * sd - sinc(a1) * dsd) / (sd * sd)
+    d3del = sp * (1.0 - sigma) * ((1.0 - sigma) * dsinc(a3) * sd - sinc(a3) * dsd) / (sd * sd)
+    # d/dt (μ̄3 z3 - μ̄1 z1) - (s1 z1 / L1 - s3 z3 / L3) = A_σ σ̇ + A_δ δ̇ + R0 = 0, written on e = u̇ / |u̇|
+    # and q (e turned by 90 degrees), where z3 = (cos α3, sin α3), z1 = (cos α1, sin α1), z⊥ = (-sin α, cos α):
+    # no cancellation at δ = 0, where the terms in dφ/dt vanish exactly
+    r3 = m3s * (1.0 - sigma) * q3 * dsp + m3n * dn + s3 / L3
+    r1 = m1s * sigma * q1 * dsp + m1n * dn + s1 / L1
+    F[0], F[1], F[2], F[3] = y[2], y[3], accx, accy
+    F[4] = -(r3 * c3 - r1 * c1 + dphi * (m1 * s1a - m3 * s3a))
+    F[5] = -(r3 * s3a - r1 * s1a + dphi * (m3 * c3 - m1 * c1))
+    M[0] = m3s * d3del * c3 + m3 * sigma * s3a - m1s * d1del * c1 + m1 * (1.0 - sigma) * s1a
+    M[1] = m3s * d3sig * c3 + m3 * delta * s3a - m1s * d1sig * c1 - m1 * delta * s1a
+    M[2] = m3s * d3del * s3a - m3 * sigma * c3 - m1s * d1del * s1a - m1 * (1.0 - sigma) * c1
+    M[3] = m3s * d3sig * s3a - m3 * delta * c3 - m1s * d1sig * s1a + m1 * delta * c1
+
+
+@scalar.jit
+def _residual(t, y, k, p, rows, F, M, out, at):
+    """out[at:at + N] = M(y) k - F(y, t)."""
+    system(t, y, p, rows, F, M)
+    for i in range(4):
+        out[at + i] = k[i] - F[i]
+    out[at + 4] = M[0] * k[4] + M[1] * k[5] - F[4]
+    out[at + 5] = M[2] * k[4] + M[3] * k[5] - F[5]
+
+
+@scalar.jit
+def lu(a, n, piv):
+    """LU factors of the n x n a (row-major, in place) with partial pivoting; False where singular."""
+    for c in range(n):
+        best, p = abs(a[c * n + c]), c
+        for r in range(c + 1, n):
+            if abs(a[r * n + c]) > best:
+                best, p = abs(a[r * n + c]), r
+        piv[c] = p
+        if best == 0.0:
+            return False
+        if p != c:
+            for j in range(n):
+                a[c * n + j], a[p * n + j] = a[p * n + j], a[c * n + j]
+        inverse = 1.0 / a[c * n + c]
+        for r in range(c + 1, n):
+            f = a[r * n + c] * inverse
+            a[r * n + c] = f
+            if f != 0.0:
+                for j in range(c + 1, n):
+                    a[r * n + j] -= f * a[c * n + j]
+    return True
+
+
+@scalar.jit
+def lu_solve(a, n, piv, b):
+    """Solve with ``lu``'s factors, b overwritten."""
+    for c in range(n):
+        p = piv[c]
+        if p != c:
+            b[c], b[p] = b[p], b[c]
+    for r in range(n):
+        acc = b[r]
+        for j in range(r):
+            acc -= a[r * n + j] * b[j]
+        b[r] = acc
+    for r in range(n - 1, -1, -1):
+        acc = b[r]
+        for j in range(r + 1, n):
+            acc -= a[r * n + j] * b[j]
+        b[r] = acc / a[r * n + r]
+
+
+@scalar.jit
+def _norm(x, at, scale):
+    """The root mean square of x[at:at + N] / scale."""
+    acc = 0.0
+    for i in range(N):
+        e = x[at + i] / scale[i]
+        acc += e * e
+    return math.sqrt(acc / N)
+
+
+@scalar.jit
+def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
+    """One Radau IIA step of length h from (t0, y0) (``system``), k0 an estimate of ẏ there: (status, error
+    norm, Newton iterations); status 0 converged (the stages' increments in Z (3 N), the new state
+    y0 + Z[2N:]), 1 Newton failed. ``work`` holds the scratch arrays (``workspace``)."""
+    F, Mb, R, J, E, jac, piv, piv6, y, scale, kk, cont = work
+    fnewt = max(10.0 * 2.220446049250313e-16 / rtol, min(0.03, math.sqrt(rtol)))
+    for i in range(N):
+        scale[i] = atol + rtol * abs(y0[i])
+    # the Jacobian of F - M k0 at y0, by forward differences
+    _residual(t0, y0, k0, p, rows, F, Mb, R, 0)
+    for j in range(N):
+        step = math.sqrt(2.220446049250313e-16 * max(1e-5, abs(y0[j])))
+        for i in range(N):
+            y[i] = y0[i]
+        y[j] += step
+        _residual(t0, y, k0, p, rows, F, Mb, R, N)
+        for i in range(N):
+            J[i * N + j] = -(R[N + i] - R[i]) / step  # d(F - M k0)/dy
+    system(t0, y0, p, rows, F, Mb)
+    # the simplified Newton matrix: block (i, k) = M0 W[i, k] / h - δ_ik J
+    size = S * N
+    for i in range(size * size):
+        jac[i] = 0.0
+    for bi in range(S):
+        for bk in range(S):
+            w = W[bi, bk] / h
+            for i in range(N):
+                row = (bi * N + i) * size + bk * N
+                if i < 4:
+                    jac[row + i] += w
+                elif i == 4:
+                    jac[row + 4] += w * Mb[0]
+                    jac[row + 5] += w * Mb[1]
+                else:
+                    jac[row + 4] += w * Mb[2]
+                    jac[row + 5] += w * Mb[3]
+                if bi == bk:
+                    for j in range(N):
+                        jac[row + j] -= J[i * N + j]
+    if not lu(jac, size, piv):
+        return 1, 0.0, 0
+    for i in range(S):
+        for j in range(N):
+            Z[i * N + j] = C[i] * h * k0[j]
+    previous, theta, iterations = 0.0, 0.0, 0
+    converged = False
+    while iterations < NEWTON:
+        iterations += 1
+        for i in range(S):
+            for j in range(N):
+                y[j] = y0[j] + Z[i * N + j]
+                acc = 0.0
+                for m in range(S):
+                    acc += W[i, m] * Z[m * N + j]
+                kk[j] = acc / h
+            _residual(t0 + C[i] * h, y, kk, p, rows, F, Mb, R, i * N)
+        for i in range(size):
+            R[i] = -R[i]
+        lu_solve(jac, size, piv, R)
+        norm = 0.0
+        for i in range(S):
+            norm = max(norm, _norm(R, i * N, scale))
+        for i in range(size):
+            Z[i] += R[i]
+        if not (norm == norm):
+            return 1, 0.0, iterations
+        if iterations > 1:
+            theta = norm / previous if previous > 0.0 else 0.0
+            if theta >= 0.99:
+                return 1, 0.0, iterations
+            if theta * norm / (1.0 - theta) <= fnewt:
+                converged = True
+                break
+        elif norm <= 1e-3 * fnewt:
+            converged = True
+            break
+        previous = norm
+    if not converged:
+        return 1, 0.0, iterations
+    # RADAU5's error estimate: (γ/h M0 - J)^-1 (F(y0) + M0 (dd Z) / h)
+    system(t0, y0, p, rows, F, Mb)
+    for i in range(N * N):
+        E[i] = -J[i]
+    g = GAMMA / h
+    for i in range(4):
+        E[i * N + i] += g
+    E[4 * N + 4] += g * Mb[0]
+    E[4 * N + 5] += g * Mb[1]
+    E[5 * N + 4] += g * Mb[2]
+    E[5 * N + 5] += g * Mb[3]
+    if not lu(E, N, piv6):
+        return 1, 0.0, iterations
+    _estimate(F, Mb, Z, h, cont)
+    lu_solve(E, N, piv6, cont)
+    for i in range(N):
+        scale[i] = atol + rtol * max(abs(y0[i]), abs(y0[i] + Z[2 * N + i]))
+    error = max(_norm(cont, 0, scale), 1e-10)
+    if error >= 1.0 and first:
+        for i in range(N):
+            y[i] = y0[i] + cont[i]
+        system(t0, y, p, rows, F, Mb)
+        system(t0, y0, p, rows, R, Mb)  # M0 again (F at y0 + cont kept in F)
+        _estimate(F, Mb, Z, h, cont)
+        lu_solve(E, N, piv6, cont)
+        error = max(_norm(cont, 0, scale), 1e-10)
+    return 0, error, iterations
+
+
+@scalar.jit
+def _estimate(F, Mb, Z, h, cont):
+    """cont = F + M (DD·Z) / h."""
+    for i in range(N):
+        cont[i] = (DD[0] * Z[i] + DD[1] * Z[N + i] + DD[2] * Z[2 * N + i]) / h
+    m4 = Mb[0] * cont[4] + Mb[1] * cont[5]
+    m5 = Mb[2] * cont[4] + Mb[3] * cont[5]
+    cont[4], cont[5] = m4, m5
+    for i in range(N):
+        cont[i] += F[i]
+
+
+def workspace():
+    """The scratch arrays of ``radau_step``."""
+    size = S * N
+    return (np.zeros(N), np.zeros(4), np.zeros(size), np.zeros(N * N), np.zeros(N * N), np.zeros(size * size),
+            np.zeros(size, dtype=np.int64), np.zeros(N, dtype=np.int64), np.zeros(N), np.zeros(N), np.zeros(N),
+            np.zeros(N))
+
+
+@scalar.jit
+def dense(y0, Z, theta, i):
+    """Component i of the collocation polynomial at theta in [0, 1] of the step (y0 and the stages' Z)."""
+    c1, c2 = C[0], C[1]
+    l1 = theta * (theta - c2) * (theta - 1.0) / (c1 * (c1 - c2) * (c1 - 1.0))
+    l2 = theta * (theta - c1) * (theta - 1.0) / (c2 * (c2 - c1) * (c2 - 1.0))
+    l3 = theta * (theta - c1) * (theta - c2) / ((1.0 - c1) * (1.0 - c2))
+    return y0[i] + l1 * Z[i] + l2 * Z[N + i] + l3 * Z[2 * N + i]

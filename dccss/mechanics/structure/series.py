@@ -1,0 +1,207 @@
+"""The articulated slider: two pendulums in series (Fenz and Constantinou 2006), one component, exact.
+
+An articulated slider is two halves joined by a spherical hinge: half j is seated on sliding surface
+j (j = 1, the lower, RB1; j = 3, the upper, RB3) and turns about that sphere's centre C^j, the hinge
+at the distance L_j from it (``Series``). The stroke u (RB3 relative to RB1, the superstructure's
+displacement relative to the ground) is the sum of the hinge's displacement relative to C¹, u_1, and
+C³'s relative to the hinge, u_3: u = u_1 + u_3. Each half is massless: its moment balance about C^j,
+the friction acting at the sliding radius R^j, gives the horizontal force it carries,
+
+    F = N u_j / L_j + μ̄_j N z_j,    μ̄_j = μ_j R^j / L_j,    |z_j| <= 1,
+
+the same F on both halves (the hinge passes it on); z_j = sign(u̇_j) while surface j slides. μ_j is
+the surface's own coefficient (friction at R^j, the rigid slider's convention), μ̄_j the force-level
+coefficient of Fenz and Constantinou and of OpenSees' ``singleFPBearing`` (with R_eff = L_j). In
+acceleration units (per unit mass, N = W): g F/W = ω_j² u_j + m_j z_j with ω_j² = g / L_j and
+m_j = g μ̄_j. The superstructure obeys ü + 2ζω u̇ + g F/W = -a_g, ω² = g / L, L = L_1 + L_3 (the
+damping from the nominal period, as the rigid slider's).
+
+Which surfaces slide is decided by the force (the thresholds T_j(z) = ω_j² u_j + z m_j):
+
+* **at rest** both hold while the demand d = -a_g lies in [max_j T_j(-1), min_j T_j(+1)]; it ends where
+  d, a straight line on a sample interval, reaches a bound (exact): the surface whose threshold it
+  reaches slides, both where their thresholds are equal (to 1e-12 of the larger m_j);
+* **one surface slides** (j), the other holds: a pendulum of length L_j, ü_j + 2ζω u̇_j + ω_j² u_j =
+  -a_g - m_j z, solved in closed form; it ends where u̇ falls to 0 (a stop, then the rest test) or where
+  F reaches the other surface's threshold, u_j = (ω_i² u_i + (m_i - m_j) z) / ω_j² (both then slide);
+* **both slide**: F/W the same on both, so u̇_1 / L_1 = u̇_3 / L_3 (u_1 / L_1 - u_3 / L_3 stays
+  (μ̄_3 - μ̄_1) z) and the device is a pendulum of length L with μ_eff = (μ̄_1 L_1 + μ̄_3 L_3) / L;
+  closed form again, until u̇ falls to 0.
+
+Each phase is the rigid slider's exact solution (``exact``) with other constants: exact to rounding.
+With μ̄_1 = μ̄_3 the surfaces yield together and slide in proportion: the rigid slider of friction
+μ̄_1 (``Structure.device_friction``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import scalar
+from .exact import CHATTER, DONE, LINE_WORK, MAX_PHASES, chatter, first_stop, slide
+
+#: a phase of the device: both surfaces hold, surface 1 slides alone, surface 3 alone, both slide
+STUCK, SLIDE1, SLIDE3, BOTH = 0, 1, 2, 3
+#: two thresholds this close (relative to the larger m_j) are reached together
+TIE = 1e-12
+
+
+@scalar.jit
+def _starting(direction, up1, up3, lo1, lo3, m1, m3):
+    """The phase that starts from rest in ``direction`` (±1), the thresholds up_j = T_j(+1), lo_j = T_j(-1):
+    the surface whose threshold the demand passes first, BOTH where the two are equal (to TIE)."""
+    tie = TIE * max(m1, m3)
+    if direction > 0.0:
+        if abs(up1 - up3) <= tie:
+            return BOTH
+        return SLIDE1 if up1 < up3 else SLIDE3
+    if abs(lo1 - lo3) <= tie:
+        return BOTH
+    return SLIDE1 if lo1 > lo3 else SLIDE3
+
+
+@scalar.jit
+def _yielding(d, u1, u3, w1sq, w3sq, m1, m3):
+    """The phase at rest under the demand d (m/s²) and its direction: (STUCK, 0) while d is within both
+    surfaces' friction, else the phase starting (``_starting``)."""
+    up1, up3 = w1sq * u1 + m1, w3sq * u3 + m3
+    lo1, lo3 = w1sq * u1 - m1, w3sq * u3 - m3
+    if d > min(up1, up3):
+        return _starting(1.0, up1, up3, lo1, lo3, m1, m3), 1.0
+    if d < max(lo1, lo3):
+        return _starting(-1.0, up1, up3, lo1, lo3, m1, m3), -1.0
+    return STUCK, 0.0
+
+
+@scalar.jit
+def _reach(y0, v0, p0, p1, omega, zeta, sign, target, end):
+    """The first tau in [0, end] where sign * (y(tau) - target) reaches 0 (y monotone in the sign's
+    direction over (0, end]: a slide up to its stop), by bisection; -1 where it is not reached."""
+    if sign * (y0 - target) >= 0.0:
+        return 0.0
+    if sign * (slide(y0, v0, p0, p1, omega, zeta, end)[0] - target) < 0.0:
+        return -1.0
+    lo, hi = 0.0, end
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if sign * (slide(y0, v0, p0, p1, omega, zeta, mid)[0] - target) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, force):
+    """The exact one-component history of an articulated slider at the interval ends (the module
+    docstring) into u, u̇, u_1, the phase (STUCK, SLIDE1, SLIDE3, BOTH) and g F/W (m/s²): (DONE, n - 1),
+    or (CHATTER, k) at an interval k of more than MAX_PHASES phases. ``w1sq``, ``w3sq`` are g / L_j,
+    ``omega`` √(g / L), ``m1``, ``m3`` g μ̄_j (> 0)."""
+    n = len(time)
+    r1 = w3sq / (w1sq + w3sq)  # L_1 / L: the share of the stroke surface 1 takes while both slide
+    x, w, x1 = 0.0, 0.0, 0.0  # u, u̇, u_1
+    state, sign = _yielding(-a0[0], 0.0, 0.0, w1sq, w3sq, m1, m3)
+    phase[0] = state
+    force[0] = -a0[0] if state == STUCK else (m3 if state == SLIDE3 else m1) * sign
+    for k in range(n - 1):
+        h = time[k + 1] - time[k]
+        tau, phases = 0.0, 0
+        while tau < h:
+            if phases >= MAX_PHASES:
+                return CHATTER, k
+            phases += 1
+            b0, b1 = a0[k] + a1[k] * tau, a1[k]  # the ground's acceleration from tau on
+            end = h - tau
+            if state == STUCK:
+                # the demand -a_g is a straight line in t; rest ends where it leaves [lower, upper]
+                up1, up3 = w1sq * x1 + m1, w3sq * (x - x1) + m3
+                lo1, lo3 = w1sq * x1 - m1, w3sq * (x - x1) - m3
+                direction = 0.0
+                if b1 != 0.0:
+                    when = (-b0 - min(up1, up3)) / b1
+                    if 0.0 < when < end:
+                        end, direction = when, 1.0
+                    when = (-b0 - max(lo1, lo3)) / b1
+                    if 0.0 < when < end:
+                        end, direction = when, -1.0
+                tau += end
+                if direction != 0.0:
+                    state, sign = _starting(direction, up1, up3, lo1, lo3, m1, m3), direction
+                continue
+            if state == BOTH:
+                # g F/W = ω_1² u_1 + m_1 z, u_1 = x1 + r1 (u - x): ü + 2ζω u̇ + ω² u = -a_g - c0
+                c0 = w1sq * x1 - omega * omega * x + m1 * sign
+                p0, p1 = -b0 - c0, -b1
+                when = first_stop(x, w, p0, p1, omega, zeta, sign, end)
+                start = x
+                if when < 0.0:
+                    x, w = slide(x, w, p0, p1, omega, zeta, end)
+                    x1 += r1 * (x - start)
+                    tau = h
+                    continue
+                x, _ = slide(x, w, p0, p1, omega, zeta, when)
+                x1 += r1 * (x - start)
+                w = 0.0
+                tau += when
+                state, sign = _yielding(-b0 - b1 * when, x1, x - x1, w1sq, w3sq, m1, m3)
+                continue
+            # one surface slides (j), the other holds (i): y = u_j, ÿ + 2ζω ẏ + ω_j² y = -a_g - m_j z
+            lower_slides = state == SLIDE1
+            if lower_slides:
+                wj, mj, y, other, wi, mi = w1sq, m1, x1, x - x1, w3sq, m3
+            else:
+                wj, mj, y, other, wi, mi = w3sq, m3, x - x1, x1, w1sq, m1
+            omega_j = math.sqrt(wj)
+            zeta_j = zeta * omega / omega_j  # the same damping 2ζω
+            p0, p1 = -b0 - mj * sign, -b1
+            stop = first_stop(y, w, p0, p1, omega_j, zeta_j, sign, end)
+            limit = stop if stop >= 0.0 else end
+            target = (wi * other + (mi - mj) * sign) / wj  # where F reaches the other surface's threshold
+            when = _reach(y, w, p0, p1, omega_j, zeta_j, sign, target, limit)
+            stopped = False
+            if when >= 0.0:
+                y, w = slide(y, w, p0, p1, omega_j, zeta_j, when)
+                state = BOTH
+            elif stop < 0.0:
+                y, w = slide(y, w, p0, p1, omega_j, zeta_j, end)
+                when = end
+            else:
+                y, _ = slide(y, w, p0, p1, omega_j, zeta_j, stop)
+                w, when, stopped = 0.0, stop, True
+            x = y + other
+            if lower_slides:
+                x1 = y
+            tau += when
+            if stopped:
+                state, sign = _yielding(-b0 - b1 * when, x1, x - x1, w1sq, w3sq, m1, m3)
+        u[k + 1], v[k + 1], u1[k + 1], phase[k + 1] = x, w, x1, state
+        if state == STUCK:
+            force[k + 1] = -(a0[k] + a1[k] * h)
+        elif state == SLIDE3:
+            force[k + 1] = w3sq * (x - x1) + m3 * sign
+        else:
+            force[k + 1] = w1sq * x1 + m1 * sign
+    return DONE, n - 1
+
+
+def series_line_history(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, compiled=None):
+    """One-component history of an articulated slider at the interval ends: u, u̇, u_1, the phase and
+    g F/W (``series_line``); ``compiled`` None: compiled for a long record (``backend``), interpreted
+    for a short one."""
+    from .. import backend
+
+    n = time.size
+    if compiled is None:
+        compiled = backend.choose(n - 1, LINE_WORK) == "numba"
+    run = scalar.kernel(series_line) if compiled else series_line
+    u, v, u1, force = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    phase = np.zeros(n, dtype=np.int64)
+    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
+                    np.ascontiguousarray(a1, dtype=float), float(w1sq), float(w3sq), float(omega), float(zeta),
+                    float(m1), float(m3), u, v, u1, phase, force)
+    if status == CHATTER:
+        raise chatter(time[k])
+    return u, v, u1, phase, force
