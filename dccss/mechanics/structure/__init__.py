@@ -56,20 +56,25 @@ displacement table's piecewise-constant acceleration).
   BLAS (whose kernels OpenBLAS chooses by processor).
 
 The package, one concern a module: ``inputs`` (``Structure``, ``Ground``: what a run is given),
-``exact`` (one component, exact), ``integrator`` (DOP853 and its events), ``circular`` (two
-components, the circular interaction), ``heat`` (the plates' heating), ``response`` (``Response``, its
-summaries, and ``respond``/``solve``, which pick the solver).
+``sliders`` (the slider kinds' registry and the hinge's geometry), ``exact`` (one component, exact),
+``integrator`` (DOP853 and its events), ``circular`` (two components, the circular interaction),
+``heat`` (the plates' heating), ``response`` (``Response``, its summaries, ``respond``, and the rigid
+slider: ``solve``), and the articulated slider: ``series`` (one component, exact), ``corner`` (both
+surfaces sliding) and ``articulated`` (its history in general, and its ``respond``). A third kind (a
+triple pendulum) is a module of its own registering itself, imported here.
 """
 
 from __future__ import annotations
 
+from . import articulated  # noqa: F401  (registers the articulated slider)
 from .circular import INTERVAL_WORK, plane_history
 from .exact import LINE_WORK, line_history
 from .inputs import FRICTION_ON, G, Ground, Structure, StructureError, period
-from .response import SUMMARIES, VERTICAL_SUMMARIES, Response, respond, solve, summarize
+from .response import SUMMARIES, VERTICAL_SUMMARIES, Response, Surfaces, respond, solve, summarize
+from .sliders import SLIDERS
 
-__all__ = ["FRICTION_ON", "G", "Ground", "INTERVAL_WORK", "LINE_WORK", "Response", "SUMMARIES", "Structure",
-           "StructureError", "VERTICAL_SUMMARIES", "period", "respond", "solve", "summarize", "warm"]
+__all__ = ["FRICTION_ON", "G", "Ground", "INTERVAL_WORK", "LINE_WORK", "Response", "SLIDERS", "SUMMARIES", "Structure",
+           "StructureError", "Surfaces", "VERTICAL_SUMMARIES", "period", "respond", "solve", "summarize", "warm"]
 
 
 def warm(kernels=("plane", "line")):

@@ -28,20 +28,25 @@ import math
 import numpy as np
 
 from .. import scalar
-from ..friction import device_mu, surface_mu
+from ..friction import FACTOR, MU, WEIGHT, device_mu, surface_mu
 from . import corner
 from .circular import breakaway
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
 from .heat import plate_temperature
+from .inputs import G
 from .integrator import HELD, MOVING, NONE, REST_SPEED, STOP, TOO_SHORT, YIELD, integrate, law_coefficient
-from .series import BOTH, SLIDE1, SLIDE3, STUCK
+from .response import Response, Surfaces
+from .series import BOTH, SLIDE1, SLIDE3, STUCK, series_line_history
+from .sliders import SliderKind, register, ring_strokes
 
 #: both surfaces start together where the other's force is within this (relative) of its friction
 TOGETHER = 1e-9
 #: Radau's tolerances for both surfaces sliding (relative; absolute, in m, m/s and rad)
-RADAU_RTOL, RADAU_ATOL = 1e-10, 1e-12
+RADAU_RTOL, RADAU_ATOL = 1e-7, 1e-9
 #: Radau's step bounds: the shortest (s) before the phase fails, the first one tried
 RADAU_MIN, RADAU_FIRST = 1e-12, 1e-4
+#: Newton's contraction below which the next step keeps the Jacobian
+THETA = 0.001
 
 
 @scalar.jit
@@ -110,7 +115,7 @@ def _corner(wx, wy, ex, ey, m1, m3, L1, L3, coulomb):
 
 
 def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp, rtol, atol, A, B, C, E3, E5,
-                K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, phase, force, mu, heat, temperature):
+                K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, v1, phase, force, mu, heat, temperature):
     """The articulated slider's history at the interval ends (the module docstring) into u, u̇, u_1 (n, 2),
     the phase (n), F/W (n, 2), each surface's coefficient μ_j (n, 2; λ included, at its sliding speed)
     and temperature (n, 2); ``rows`` the surfaces' laws (weight and ratio R^j / L_j), ``rigid_rows`` the
@@ -135,7 +140,7 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp
                       device_mu(rows[0:1], 0.0, m, t1, t1), device_mu(rows[1:2], 0.0, m, t3, t3), hold)
         starting = state != STUCK
     _record(0, state, x0, x1, w0, w1, q0, q1, delta, sigma, -a0[0, 0], -a0[0, 1], m, p, rows, t1, t3, g, ys, u, v,
-            u1, phase, force, mu)
+            u1, v1, phase, force, mu)
     for k in range(n - 1):
         h = time[k + 1] - time[k]
         tau, phases = 0.0, 0
@@ -293,7 +298,7 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp
                                            temperature, k + 1)
                 heated, since = heated + 1, k + 1
         _record(k + 1, state, x0, x1, w0, w1, q0, q1, delta, sigma, -(a0[k, 0] + a1[k, 0] * h),
-                -(a0[k, 1] + a1[k, 1] * h), m, p, rows, t1, t3, g, ys, u, v, u1, phase, force, mu)
+                -(a0[k, 1] + a1[k, 1] * h), m, p, rows, t1, t3, g, ys, u, v, u1, v1, phase, force, mu)
     return DONE, 0
 
 
@@ -310,7 +315,8 @@ def _at_rest(bx, by, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold):
 @scalar.jit
 def _both(y, y0, end, h, p, rows, k0, work, Z):
     """Radau over [0, end] from y (overwritten): (what ended it: NONE, STOP, YIELD (σ reached 0 or 1) or
-    TOO_SHORT, when, the next step)."""
+    TOO_SHORT, when, the next step). The Jacobian is kept from step to step while Newton converges fast
+    (θ <= THETA)."""
     t = 0.0
     F, Mb = work[0], work[1]
     if h <= 0.0:
@@ -319,22 +325,24 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
     for i in range(4):
         k0[i] = F[i]
     k0[4], k0[5] = 0.0, 0.0
-    first = True
+    first, refresh = True, 2
+    current = False  # whether the Jacobian is the one at the step's start
     while t < end:
         taken = min(h, end - t)
         if taken < RADAU_MIN:
             return TOO_SHORT, t, h
         for i in range(corner.N):
             y0[i] = y[i]
-        status, error, iterations = corner.radau_step(t, y0, taken, p, rows, k0, RADAU_RTOL, RADAU_ATOL, first, Z, work)
+        status, error, iterations, theta = corner.radau_step(t, y0, taken, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
+                                                             first, refresh, Z, work)
+        current = current or refresh == 2
         if status != 0:
-            h = 0.5 * taken
+            h, refresh = 0.5 * taken, (1 if current else 2)
             continue
         factor = 0.9 * (1.0 + 2.0 * corner.NEWTON) / (iterations + 2.0 * corner.NEWTON)
         quotient = max(1.0 / 8.0, min(5.0, error ** 0.25 / factor))
         if error > 1.0:
-            h = taken / quotient
-            first = False
+            h, refresh, first = taken / quotient, (1 if current else 2), False
             continue
         first = False
         # the events at the step's end: a stop, or a surface stopping (σ out of [0, 1])
@@ -353,7 +361,8 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
                     acc += corner.W[2, j] * Z[j * corner.N + i]
                 k0[i] = acc / taken
             t += taken
-            h = taken / quotient
+            current = False
+            h, refresh = taken / quotient, (1 if theta <= THETA else 2)
             continue
         # locate it on the collocation polynomial, then step there
         lo, hi = 0.0, 1.0
@@ -368,8 +377,8 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
                 lo = mid
         length = hi * taken
         if length > RADAU_MIN:
-            status, error, iterations = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
-                                                          False, Z, work)
+            status, error, iterations, theta = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
+                                                                 False, 1, Z, work)
             if status != 0:
                 return TOO_SHORT, t, h
             for i in range(corner.N):
@@ -381,11 +390,12 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
 
 
 @scalar.jit
-def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, t1, t3, g, y, u, v, u1, phase,
+def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, t1, t3, g, y, u, v, u1, v1, phase,
             force, mu):
-    """Row k of the history: the state, F/W (the demand -a_g / g at rest) and each surface's μ_j."""
+    """Row k of the history: the state, u̇_1, F/W (the demand -a_g / g at rest) and each surface's μ_j."""
     u[k, 0], u[k, 1], v[k, 0], v[k, 1], u1[k, 0], u1[k, 1] = x0, x1, w0, w1, q0, q1
     phase[k] = state
+    v1[k, 0], v1[k, 1] = (w0, w1) if state == SLIDE1 else (0.0, 0.0)
     speed = math.sqrt(w0 * w0 + w1 * w1)
     L1, L3 = p[0], p[1]
     if state == STUCK:
@@ -398,6 +408,7 @@ def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, 
         p[8], p[9] = m, 0.0
         n, z1x, z1y, z3x, z3y, s1, s3, m1, m3, fx, fy = corner.shape(y, p, rows, 0.0)
         force[k, 0], force[k, 1] = m * fx, m * fy
+        v1[k, 0], v1[k, 1] = s1 * z1x, s1 * z1y
         mu[k, 0] = rows[0][3] * surface_mu(rows[0], rows[0][2] * s1, m, t1)
         mu[k, 1] = rows[1][3] * surface_mu(rows[1], rows[1][2] * s3, m, t3)
         return
@@ -425,7 +436,6 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
     each interval end is one of the record's samples (the heat intervals; default: all); ``compiled`` None:
     compiled for a long record (``backend``), interpreted for a short one."""
     from .. import backend
-    from .inputs import G
     from .integrator import ATOL, RTOL, SIZE, STAGES, tableau
 
     time, a0, a1 = ground.time, ground.a0, ground.a1
@@ -444,7 +454,7 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
     work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
     if not compiled:
         work = tuple(w.tolist() for w in work)
-    u, v, u1, force = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
+    u, v, u1, v1, force = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     phase = np.zeros(n, dtype=np.int64)
     heat, temperature, mu = np.zeros((n, 4)), np.zeros((n, 2)), np.zeros((n, 2))
     samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
@@ -456,7 +466,7 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
                     np.ascontiguousarray(n1, dtype=float), law, rigid if compiled else rigid.tolist(), samples,
                     float(L1), float(L3), G, 2.0 * float(zeta) * omega, float(RTOL), float(ATOL), *tableau(compiled),
                     *work, corner.workspace(), np.zeros(corner.S * corner.N), np.zeros(corner.N),
-                    np.zeros(corner.N), np.zeros(corner.N), u, v, u1, phase, force, mu, heat, temperature)
+                    np.zeros(corner.N), np.zeros(corner.N), u, v, u1, v1, phase, force, mu, heat, temperature)
     if status == CHATTER:
         from .exact import chatter
 
@@ -465,4 +475,73 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
         raise RuntimeError(f"structure: the articulated slider's integration failed (its step fell below the "
                            f"smallest) in the sample interval at t = {time[k]:g} s; report the record and the "
                            f"structure")
-    return u, v, u1, phase, force, mu, temperature
+    return u, v, u1, v1, phase, force, mu, temperature
+
+
+def respond(ground, times, geometry, structure) -> Response:
+    """The response of a structure on an articulated slider (``Response`` with its ``Surfaces``): exact in one
+    component under Coulomb friction without a vertical (``series``), else ``articulated_history``."""
+    refined, index = ground.refined(times)
+    L1, L3 = structure.pendulums(geometry)
+    L = L1 + L3
+    rows = structure.rows(geometry, proportional=False)
+    components = refined.a0.shape[1]
+    temperature = None
+    if components == 1 and not refined.has_vertical and structure.coulomb:
+        m1, m3 = (G * r[WEIGHT] * r[FACTOR] * r[MU] for r in rows)
+        u, v, u1, phase, force = series_line_history(refined.time, refined.a0[:, 0], refined.a1[:, 0], G / L1, G / L3,
+                                                     math.sqrt(G / L), structure.damping, m1, m3)
+        u, v, u1, force = u[:, None], v[:, None], u1[:, None], force[:, None] / G
+        v1 = np.where(phase == SLIDE1, 1.0, np.where(phase == BOTH, L1 / L, 0.0))[:, None] * v
+        mu = np.broadcast_to([r[FACTOR] * r[MU] for r in rows], (u.shape[0], 2))
+    else:
+        u, v, u1, v1, phase, force, mu, temperature = articulated_history(
+            refined, L1, L3, structure.damping, rows, structure.rows(geometry), np.isin(refined.time, ground.time))
+        u, v, u1, v1, force = (x[:, :components] for x in (u, v, u1, v1, force))
+        if not np.any(rows[:, 0] == 3.0):
+            temperature = None
+    normal = refined.normal()
+    load = np.maximum(normal, 0.0)[:, None]
+    weights = rows[:, WEIGHT]
+    stroke = np.stack([u1, u - u1], axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(load[..., None] > 0.0, (force[..., None] / load[..., None] - stroke / np.array([L1, L3]))
+                     / (weights * mu)[:, None, :], 0.0)
+    sliding = np.stack([(phase == SLIDE1) | (phase == BOTH), (phase == SLIDE3) | (phase == BOTH)], axis=-1)
+    hinge = _hinge(stroke, L1, L3)
+    span = slice(index[0], None)  # to the record's end, past the last requested time
+    peaks = tuple(float(np.max(np.linalg.norm(x[span], axis=1))) for x in (u, force))
+    size = np.linalg.norm(stroke[span], axis=1)  # (T', 2)
+    rings = ring_strokes(geometry, structure.hinge)
+    ring = []
+    for j in range(2):
+        beyond = np.nonzero(size[:, j] >= rings[j])[0]
+        ring.append((float(refined.time[span][beyond[0]]) if beyond.size else math.nan,
+                     float(max(size[:, j].max() - rings[j], 0.0))))
+    uplift = None
+    if refined.v0 is not None:
+        peaks += (float(np.min(normal[span])),)
+        uplift = [(max(a, float(times[0])), b) for a, b in refined.uplift() if b > times[0]]
+    surfaces = Surfaces(stroke[index], np.stack([v1, v - v1], axis=-1)[index], z[index], sliding[index],
+                        np.asarray(mu)[index], hinge[index], (L1, L3), rings,
+                        tuple(float(x) for x in size.max(axis=0)), float(np.max(np.abs(hinge[span]))), tuple(ring))
+    return Response(u[index], v[index], None, force[index], (phase == STUCK)[index], peaks,
+                    None if uplift is None else normal[index], uplift, None,
+                    None if temperature is None else temperature[index], surfaces)
+
+
+def _hinge(stroke, L1, L3):
+    """The hinge rotation (rad) of the surfaces' displacements ``stroke`` (T, c, 2): θ_1 - θ_3 (sin θ_j = u_j /
+    L_j) in one component, the angle between the two halves' axes in two."""
+    t1, t3 = stroke[..., 0] / L1, stroke[..., 1] / L3
+    if stroke.shape[1] == 1:
+        return np.arcsin(np.clip(t1[:, 0], -1, 1)) - np.arcsin(np.clip(t3[:, 0], -1, 1))
+    a1 = np.column_stack([t1, np.sqrt(np.maximum(1.0 - np.sum(t1 * t1, axis=1), 0.0))])
+    a3 = np.column_stack([t3, np.sqrt(np.maximum(1.0 - np.sum(t3 * t3, axis=1), 0.0))])
+    cross = np.linalg.norm(np.cross(a1, a3), axis=1)
+    return np.arctan2(cross, np.sum(a1 * a3, axis=1))
+
+
+ARTICULATED = register(SliderKind("articulated", "two halves joined by a spherical hinge (Fenz and Constantinou's "
+                                  "double friction pendulum): each surface slides or holds by its own friction, two "
+                                  "pendulums in series", respond, proportional=False))

@@ -45,6 +45,20 @@ A = np.array([[(88.0 - 7.0 * SQ6) / 360.0, (296.0 - 169.0 * SQ6) / 1800.0, (-2.0
               [(296.0 + 169.0 * SQ6) / 1800.0, (88.0 + 7.0 * SQ6) / 360.0, (-2.0 - 3.0 * SQ6) / 225.0],
               [(16.0 - SQ6) / 36.0, (16.0 + SQ6) / 36.0, 1.0 / 9.0]])
 W = np.linalg.inv(A)
+
+
+def _transform():
+    """T with T^-1 W T = [[γ, 0, 0], [0, α, β], [0, -β, α]] (W's real and complex eigenvectors), T^-1, and
+    that matrix: the simplified Newton iteration splits into a real N x N system and a real 2N x 2N one."""
+    values, vectors = np.linalg.eig(W)
+    real = int(np.argmin(np.abs(values.imag)))
+    other = [k for k in range(3) if k != real and values[k].imag > 0][0]
+    T = np.column_stack([vectors[:, real].real, vectors[:, other].real, vectors[:, other].imag])
+    TI = np.linalg.inv(T)
+    return T, TI, TI @ W @ T
+
+
+T, TI, WT = _transform()
 DD = np.array([-(13.0 + 7.0 * SQ6) / 3.0, (-13.0 + 7.0 * SQ6) / 3.0, -1.0 / 3.0])
 GAMMA = 1.0 / ((6.0 + 81.0 ** (1.0 / 3.0) - 9.0 ** (1.0 / 3.0)) / 30.0)
 #: Newton: at most this many iterations a step
@@ -52,20 +66,12 @@ NEWTON = 7
 
 
 @scalar.jit
-def sinc(x):
-    """sin x / x (1 at 0)."""
+def sincs(x, s, c):
+    """sin x / x (1 at 0) and its derivative, s = sin x and c = cos x given."""
     if abs(x) < 1e-4:
         x2 = x * x
-        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0
-    return math.sin(x) / x
-
-
-@scalar.jit
-def dsinc(x):
-    """d(sin x / x)/dx."""
-    if abs(x) < 1e-4:
-        return -x / 3.0 + x * x * x / 30.0
-    return (x * math.cos(x) - math.sin(x)) / (x * x)
+        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0, -x / 3.0 + x * x2 / 30.0
+    return s / x, (x * c - s) / (x * x)
 
 
 @scalar.jit
@@ -87,13 +93,13 @@ def shape(y, p, rows, t):
     sp = math.sqrt(y[2] * y[2] + y[3] * y[3])
     ex, ey = y[2] / sp, y[3] / sp
     delta, sigma = y[4], y[5]
-    c3, s3a = math.cos(-sigma * delta), math.sin(-sigma * delta)
-    c1, s1a = math.cos((1.0 - sigma) * delta), math.sin((1.0 - sigma) * delta)
-    z3x, z3y = ex * c3 - ey * s3a, ey * c3 + ex * s3a
-    z1x, z1y = ex * c1 - ey * s1a, ey * c1 + ex * s1a
-    sd = sinc(delta)
-    s1 = sp * sigma * sinc(sigma * delta) / sd
-    s3 = sp * (1.0 - sigma) * sinc((1.0 - sigma) * delta) / sd
+    a1, a3 = sigma * delta, (1.0 - sigma) * delta
+    sa1, ca1, sa3, ca3 = math.sin(a1), math.cos(a1), math.sin(a3), math.cos(a3)
+    z3x, z3y = ex * ca1 + ey * sa1, ey * ca1 - ex * sa1
+    z1x, z1y = ex * ca3 - ey * sa3, ey * ca3 + ex * sa3
+    sd = sincs(delta, math.sin(delta), math.cos(delta))[0]
+    s1 = sp * sigma * sincs(a1, sa1, ca1)[0] / sd
+    s3 = sp * (1.0 - sigma) * sincs(a3, sa3, ca3)[0] / sd
     m1 = coefficient(rows[0], s1, n, p[10])[0]
     m3 = coefficient(rows[1], s3, n, p[11])[0]
     L = L1 + L3
@@ -115,13 +121,16 @@ def system(t, y, p, rows, F, M):
     ex, ey = y[2] / sp, y[3] / sp
     qx, qy = -ey, ex
     delta, sigma = y[4], y[5]
-    c3, s3a = math.cos(-sigma * delta), math.sin(-sigma * delta)
-    c1, s1a = math.cos((1.0 - sigma) * delta), math.sin((1.0 - sigma) * delta)
+    # z3 at the angle α3 = -σδ from e, z1 at α1 = (1 - σ)δ: three angles' sines and cosines in all
+    a1, a3 = sigma * delta, (1.0 - sigma) * delta
+    sa1, ca1, sa3, ca3 = math.sin(a1), math.cos(a1), math.sin(a3), math.cos(a3)
+    c3, s3a, c1, s1a = ca1, -sa1, ca3, sa3
     z3x, z3y = ex * c3 - ey * s3a, ey * c3 + ex * s3a
     z1x, z1y = ex * c1 - ey * s1a, ey * c1 + ex * s1a
-    sd, dsd = sinc(delta), dsinc(delta)
-    a1, a3 = sigma * delta, (1.0 - sigma) * delta
-    q1, q3 = sinc(a1) / sd, sinc(a3) / sd
+    sd, dsd = sincs(delta, math.sin(delta), math.cos(delta))
+    k1, dk1 = sincs(a1, sa1, ca1)
+    k3, dk3 = sincs(a3, sa3, ca3)
+    q1, q3 = k1 / sd, k3 / sd
     s1, s3 = sp * sigma * q1, sp * (1.0 - sigma) * q3
     m1, m1s, m1n = coefficient(rows[0], s1, n, p[10])
     m3, m3s, m3n = coefficient(rows[1], s3, n, p[11])
@@ -133,10 +142,10 @@ def system(t, y, p, rows, F, M):
     dsp = ex * accx + ey * accy  # d|u̇|/dt
     dphi = (qx * accx + qy * accy) / sp  # how fast u̇ turns
     # the hinge speeds' derivatives: ṡ_j = (∂s_j/∂|u̇|) d|u̇|/dt + (∂s_j/∂σ) σ̇ + (∂s_j/∂δ) δ̇
-    d1sig = sp * (q1 + a1 * dsinc(a1) / sd)
-    d3sig = -sp * (q3 + a3 * dsinc(a3) / sd)
-    d1del = sp * sigma * (sigma * dsinc(a1) * sd - sinc(a1) * dsd) / (sd * sd)
-    d3del = sp * (1.0 - sigma) * ((1.0 - sigma) * dsinc(a3) * sd - sinc(a3) * dsd) / (sd * sd)
+    d1sig = sp * (q1 + a1 * dk1 / sd)
+    d3sig = -sp * (q3 + a3 * dk3 / sd)
+    d1del = sp * sigma * (sigma * dk1 * sd - k1 * dsd) / (sd * sd)
+    d3del = sp * (1.0 - sigma) * ((1.0 - sigma) * dk3 * sd - k3 * dsd) / (sd * sd)
     # d/dt (μ̄3 z3 - μ̄1 z1) - (s1 z1 / L1 - s3 z3 / L3) = A_σ σ̇ + A_δ δ̇ + R0 = 0, written on e = u̇ / |u̇|
     # and q (e turned by 90 degrees), where z3 = (cos α3, sin α3), z1 = (cos α1, sin α1), z⊥ = (-sin α, cos α):
     # no cancellation at δ = 0, where the terms in dφ/dt vanish exactly
@@ -215,15 +224,8 @@ def _norm(x, at, scale):
 
 
 @scalar.jit
-def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
-    """One Radau IIA step of length h from (t0, y0) (``system``), k0 an estimate of ẏ there: (status, error
-    norm, Newton iterations); status 0 converged (the stages' increments in Z (3 N), the new state
-    y0 + Z[2N:]), 1 Newton failed. ``work`` holds the scratch arrays (``workspace``)."""
-    F, Mb, R, J, E, jac, piv, piv6, y, scale, kk, cont = work
-    fnewt = max(10.0 * 2.220446049250313e-16 / rtol, min(0.03, math.sqrt(rtol)))
-    for i in range(N):
-        scale[i] = atol + rtol * abs(y0[i])
-    # the Jacobian of F - M k0 at y0, by forward differences
+def _jacobian(t0, y0, p, rows, k0, F, Mb, R, J, y):
+    """J = d(F - M k0)/dy at (t0, y0) by forward differences (N x N, row-major)."""
     _residual(t0, y0, k0, p, rows, F, Mb, R, 0)
     for j in range(N):
         step = math.sqrt(2.220446049250313e-16 * max(1e-5, abs(y0[j])))
@@ -232,30 +234,53 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
         y[j] += step
         _residual(t0, y, k0, p, rows, F, Mb, R, N)
         for i in range(N):
-            J[i * N + j] = -(R[N + i] - R[i]) / step  # d(F - M k0)/dy
-    system(t0, y0, p, rows, F, Mb)
-    # the simplified Newton matrix: block (i, k) = M0 W[i, k] / h - δ_ik J
-    size = S * N
-    for i in range(size * size):
-        jac[i] = 0.0
-    for bi in range(S):
-        for bk in range(S):
-            w = W[bi, bk] / h
-            for i in range(N):
-                row = (bi * N + i) * size + bk * N
-                if i < 4:
-                    jac[row + i] += w
-                elif i == 4:
-                    jac[row + 4] += w * Mb[0]
-                    jac[row + 5] += w * Mb[1]
-                else:
-                    jac[row + 4] += w * Mb[2]
-                    jac[row + 5] += w * Mb[3]
-                if bi == bk:
-                    for j in range(N):
-                        jac[row + j] -= J[i * N + j]
-    if not lu(jac, size, piv):
-        return 1, 0.0, 0
+            J[i * N + j] = -(R[N + i] - R[i]) / step
+
+
+@scalar.jit
+def _mass(Mb, i, j):
+    """Entry (i, j) of M (the identity on u and u̇, Mb on (δ, σ))."""
+    if i < 4:
+        return 1.0 if i == j else 0.0
+    if j < 4:
+        return 0.0
+    return Mb[(i - 4) * 2 + (j - 4)]
+
+
+@scalar.jit
+def _factor(h, J, M0, E1, piv1, E2, piv2):
+    """The LU factors of the transformed Newton matrices: E1 = γ/h M0 - J (N x N) and
+    E2 = [[α/h M0 - J, β/h M0], [-β/h M0, α/h M0 - J]] (2N x 2N); False where one is singular."""
+    g, a, b = WT[0, 0] / h, WT[1, 1] / h, WT[1, 2] / h
+    n2 = 2 * N
+    for i in range(N):
+        for j in range(N):
+            m = _mass(M0, i, j)
+            E1[i * N + j] = g * m - J[i * N + j]
+            E2[i * n2 + j] = a * m - J[i * N + j]
+            E2[(i + N) * n2 + j + N] = a * m - J[i * N + j]
+            E2[i * n2 + j + N] = b * m
+            E2[(i + N) * n2 + j] = -b * m
+    return lu(E1, N, piv1) and lu(E2, n2, piv2)
+
+
+@scalar.jit
+def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, refresh, Z, work):
+    """One Radau IIA step of length h from (t0, y0) (``system``), k0 an estimate of ẏ there: (status, error
+    norm, Newton iterations, the Newton's contraction θ); status 0 converged (the stages' increments in Z
+    (3 N), the new state y0 + Z[2N:]), 1 Newton failed. ``refresh`` 2: a new Jacobian and factors, 1: new
+    factors (h changed), 0: both as the last step's. ``work`` holds the Jacobian, the factors and scratch
+    arrays (``workspace``)."""
+    F, Mb, R, J, M0, E1, piv1, E2, piv2, y, scale, kk, cont, V = work
+    fnewt = max(10.0 * 2.220446049250313e-16 / rtol, min(0.03, math.sqrt(rtol)))
+    for i in range(N):
+        scale[i] = atol + rtol * abs(y0[i])
+    if refresh >= 2:
+        _jacobian(t0, y0, p, rows, k0, F, Mb, R, J, y)
+        system(t0, y0, p, rows, F, M0)
+    if refresh >= 1:
+        if not _factor(h, J, M0, E1, piv1, E2, piv2):
+            return 1, 0.0, 0, 1.0
     for i in range(S):
         for j in range(N):
             Z[i * N + j] = C[i] * h * k0[j]
@@ -271,20 +296,30 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
                     acc += W[i, m] * Z[m * N + j]
                 kk[j] = acc / h
             _residual(t0 + C[i] * h, y, kk, p, rows, F, Mb, R, i * N)
-        for i in range(size):
-            R[i] = -R[i]
-        lu_solve(jac, size, piv, R)
+        # transformed: V = (T^-1 x I)(-R), E1 V1 = ..., E2 (V2, V3) = ...
+        for j in range(N):
+            for i in range(S):
+                V[i * N + j] = -(TI[i, 0] * R[j] + TI[i, 1] * R[N + j] + TI[i, 2] * R[2 * N + j])
+        for j in range(N):
+            cont[j] = V[j]
+        lu_solve(E1, N, piv1, cont)
+        for j in range(N):
+            V[j] = cont[j]
+        lu_solve(E2, 2 * N, piv2, V[N:])
+        for j in range(N):  # back: dZ = (T x I) V
+            for i in range(S):
+                R[i * N + j] = T[i, 0] * V[j] + T[i, 1] * V[N + j] + T[i, 2] * V[2 * N + j]
         norm = 0.0
         for i in range(S):
             norm = max(norm, _norm(R, i * N, scale))
-        for i in range(size):
+        for i in range(S * N):
             Z[i] += R[i]
         if not (norm == norm):
-            return 1, 0.0, iterations
+            return 1, 0.0, iterations, 1.0
         if iterations > 1:
             theta = norm / previous if previous > 0.0 else 0.0
             if theta >= 0.99:
-                return 1, 0.0, iterations
+                return 1, 0.0, iterations, theta
             if theta * norm / (1.0 - theta) <= fnewt:
                 converged = True
                 break
@@ -293,22 +328,11 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
             break
         previous = norm
     if not converged:
-        return 1, 0.0, iterations
+        return 1, 0.0, iterations, theta
     # RADAU5's error estimate: (γ/h M0 - J)^-1 (F(y0) + M0 (dd Z) / h)
     system(t0, y0, p, rows, F, Mb)
-    for i in range(N * N):
-        E[i] = -J[i]
-    g = GAMMA / h
-    for i in range(4):
-        E[i * N + i] += g
-    E[4 * N + 4] += g * Mb[0]
-    E[4 * N + 5] += g * Mb[1]
-    E[5 * N + 4] += g * Mb[2]
-    E[5 * N + 5] += g * Mb[3]
-    if not lu(E, N, piv6):
-        return 1, 0.0, iterations
     _estimate(F, Mb, Z, h, cont)
-    lu_solve(E, N, piv6, cont)
+    lu_solve(E1, N, piv1, cont)
     for i in range(N):
         scale[i] = atol + rtol * max(abs(y0[i]), abs(y0[i] + Z[2 * N + i]))
     error = max(_norm(cont, 0, scale), 1e-10)
@@ -316,11 +340,10 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, Z, work):
         for i in range(N):
             y[i] = y0[i] + cont[i]
         system(t0, y, p, rows, F, Mb)
-        system(t0, y0, p, rows, R, Mb)  # M0 again (F at y0 + cont kept in F)
-        _estimate(F, Mb, Z, h, cont)
-        lu_solve(E, N, piv6, cont)
+        _estimate(F, M0, Z, h, cont)
+        lu_solve(E1, N, piv1, cont)
         error = max(_norm(cont, 0, scale), 1e-10)
-    return 0, error, iterations
+    return 0, error, iterations, theta
 
 
 @scalar.jit
@@ -336,11 +359,12 @@ def _estimate(F, Mb, Z, h, cont):
 
 
 def workspace():
-    """The scratch arrays of ``radau_step``."""
+    """The arrays of ``radau_step``: F, M, residuals, the Jacobian, M0, the two factors and their pivots,
+    scratch."""
     size = S * N
-    return (np.zeros(N), np.zeros(4), np.zeros(size), np.zeros(N * N), np.zeros(N * N), np.zeros(size * size),
-            np.zeros(size, dtype=np.int64), np.zeros(N, dtype=np.int64), np.zeros(N), np.zeros(N), np.zeros(N),
-            np.zeros(N))
+    return (np.zeros(N), np.zeros(4), np.zeros(size), np.zeros(N * N), np.zeros(4), np.zeros(N * N),
+            np.zeros(N, dtype=np.int64), np.zeros(4 * N * N), np.zeros(2 * N, dtype=np.int64), np.zeros(N),
+            np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(size))
 
 
 @scalar.jit

@@ -12,6 +12,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..friction import COULOMB, FACTOR, LAWS, T0, WEIGHT, FrictionError, row, surface_mu
+from .sliders import SLIDERS, pendulums
 
 G = 9.80665  # standard gravity (m/s²)
 
@@ -39,12 +40,18 @@ class Structure:
 
     ``friction`` is a number μ (0 <= μ < 1; 0 a frictionless pendulum: Coulomb friction), a law
     ``{law: velocity, slow: ..., fast: ..., rate: ...}`` (``dccss.mechanics.friction.LAWS``), or with
-    ``friction_on="surfaces"`` one number or law for both surfaces or a list of two, RB1's and RB3's."""
+    ``friction_on="surfaces"`` one number or law for both surfaces or a list of two, RB1's and RB3's.
+
+    ``slider`` is the device's construction (``sliders.SLIDERS``): ``rigid`` (one body, the surfaces
+    sliding in proportion) or ``articulated`` (two halves on a hinge ``hinge`` m above the pad's centre,
+    each surface sliding by its own friction: ``friction_on="surfaces"``, each μ > 0 at rest)."""
 
     friction: object
     damping: float = 0.0
     friction_on: str = "device"
     factor: float = 1.0
+    slider: str = "rigid"
+    hinge: float = 0.0
     laws: list = field(init=False, repr=False, compare=False)  # [(Law, values)]: the device's, or RB1's and RB3's
 
     def __post_init__(self):
@@ -63,10 +70,43 @@ class Structure:
             if not (math.isfinite(float(value)) and ok(float(value))):
                 problems.append(f"structure.{key}: {float(value)!r} is outside {allowed}")
             object.__setattr__(self, "factor" if key == "property" else key, float(value))
+        problems += self._slider_problems()
         if problems:
             raise StructureError(*problems)
         if isinstance(self.friction, (int, float, np.integer, np.floating)):
             object.__setattr__(self, "friction", float(self.friction))
+
+    def _slider_problems(self) -> list[str]:
+        """What is wrong with ``slider`` and ``hinge`` (and, for an articulated slider, its friction)."""
+        if self.slider not in SLIDERS:
+            return [f"structure.slider: must be one of {list(SLIDERS)}, got {self.slider!r}"]
+        if isinstance(self.hinge, bool) or not isinstance(self.hinge, (int, float, np.integer, np.floating)) \
+                or not math.isfinite(float(self.hinge)):
+            return [f"structure.hinge: expected a finite number (m, the hinge's height above the pad's centre), "
+                    f"got {self.hinge!r}"]
+        object.__setattr__(self, "hinge", float(self.hinge))
+        if self.slider != "articulated":
+            return []
+        if self.friction_on != "surfaces":
+            return ["structure.friction_on: an articulated slider's surfaces slide each by its own friction: give "
+                    "it as friction_on: surfaces (one number or law for both, or a list of two, RB1's and RB3's)"]
+        out = []
+        for i, (law, values) in enumerate(getattr(self, "laws", [])):
+            r = row(law, values)
+            if not surface_mu(r, 0.0, 1.0, r[T0]) > 0.0:
+                out.append(f"structure.friction{f'[{i}]' if isinstance(self.friction, list) else ''}: an articulated "
+                           f"slider's surfaces need friction at rest (μ > 0): with none, which surface slides is "
+                           f"not decided")
+        return out
+
+    def pendulums(self, geometry) -> tuple[float, float]:
+        """(L_1, L_3) (m) of the device's surfaces with this structure's hinge (``sliders.pendulums``); a
+        StructureError where the hinge is not between the sphere centres."""
+        L1, L3 = pendulums(geometry, self.hinge)
+        if not (L1 > 0.0 and L3 > 0.0):
+            raise StructureError(f"structure.hinge: {self.hinge!r} m above the pad's centre puts the hinge beyond a "
+                                 f"sphere centre (L_1 = {L1:.4g} m, L_3 = {L3:.4g} m): it must lie between C1 and C3")
+        return L1, L3
 
     @property
     def coulomb(self) -> bool:
@@ -94,12 +134,17 @@ class Structure:
                                  f"μ3 R3) / L times λ, outside 0 <= μ < 1")
         return mu
 
-    def rows(self, geometry) -> np.ndarray:
+    def rows(self, geometry, proportional=True) -> np.ndarray:
         """The kernel's rows of the friction laws on ``geometry``: one for the device, or RB1's and RB3's
-        surfaces weighted by R^j / L (their sliding speed R^j / L times the stroke's)."""
+        surfaces weighted by R^j / L (their sliding speed R^j / L times the stroke's: the surfaces sliding in
+        proportion), or not ``proportional`` by R^j / L_j (an articulated slider's surfaces, each a pendulum of
+        length L_j: μ̄_j = μ_j R^j / L_j, its speed R^j / L_j times the hinge's)."""
         if self.friction_on == "device":
             return np.array([row(law, values, factor=self.factor) for law, values in self.laws])
         ratios = [float(geometry.R1) / float(geometry.L), float(geometry.R3) / float(geometry.L)]
+        if not proportional:
+            L1, L3 = self.pendulums(geometry)
+            ratios = [float(geometry.R1) / L1, float(geometry.R3) / L3]
         return np.array([row(law, values, weight=r, ratio=r, factor=self.factor)
                          for (law, values), r in zip(self.laws, ratios)])
 
@@ -112,6 +157,10 @@ class Structure:
                "structure_pendulum_length_m": float(geometry.L), "structure_period_s": period(geometry.L)}
         if self.factor != 1.0:
             out["structure_property_factor"] = self.factor
+        if self.slider != "rigid":
+            L1, L3 = self.pendulums(geometry)
+            out.update(structure_slider=self.slider, structure_hinge_m=self.hinge, structure_pendulum_lengths_m=
+                       np.array([L1, L3]))
         return out
 
 

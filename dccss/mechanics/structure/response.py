@@ -11,6 +11,7 @@ import numpy as np
 from .circular import plane_history
 from .exact import line_history
 from .inputs import G, Ground, Structure
+from .sliders import SLIDERS, SliderKind, register
 
 
 class Response(NamedTuple):
@@ -32,6 +33,30 @@ class Response(NamedTuple):
     uplift: list | None = None
     friction: np.ndarray | None = None  # (T,) μ(t) of a friction law (None: Coulomb's constant μ)
     temperature: np.ndarray | None = None  # (T, surfaces) the plates' temperatures (°C) of a temperature law
+    surfaces: Surfaces | None = None  # each surface's own history (an articulated slider)
+
+
+class Surfaces(NamedTuple):
+    """Each sliding surface's history (j = 1, 3 in the last axis): the hinge's displacement u_j (m; u_1
+    relative to C¹, u_3 of C³ relative to the hinge, u_1 + u_3 = u) and its velocity, (T, c, 2); the friction
+    state z_j = (F/N - u_j / L_j) / μ̄_j (T, c, 2); whether each slides (T, 2); each surface's coefficient μ_j
+    (λ included, at its own sliding speed) (T, 2); the hinge rotation (T,) (rad: θ_1 - θ_3, sin θ_j = u_j /
+    L_j, in one component; the angle between the halves' axes in two); the pendulum lengths L_j and the
+    strokes u_j at which each half reaches its ring (m); ``peaks`` the largest |u_j| over the record's
+    samples and the requested times (as ``Response.peaks``) and ``hinge_peak`` the largest hinge rotation
+    (rad); ``ring`` each surface's (time it first reaches its ring, s, or NaN; by how much at most, m)."""
+
+    stroke: np.ndarray
+    velocity: np.ndarray
+    z: np.ndarray
+    sliding: np.ndarray
+    friction: np.ndarray
+    hinge: np.ndarray
+    pendulums: tuple
+    rings: tuple
+    peaks: tuple
+    hinge_peak: float
+    ring: tuple
 
 
 #: a structure's summaries of one history: name -> (units, long_name)
@@ -64,7 +89,12 @@ def summarize(response: Response) -> dict:
 def respond(ground: Ground, times, geometry, structure: Structure) -> Response:
     """The structure's response to ``ground`` at ``times`` (s, within the ground's span), on the device
     ``geometry`` (its pendulum length L, and R1, R3 for a surfaces' friction); at rest (u = u̇ = 0) at
-    ``ground.time[0]``."""
+    ``ground.time[0]``; by its slider's kind (``sliders.SLIDERS``)."""
+    return SLIDERS[structure.slider].respond(ground, times, geometry, structure)
+
+
+def _rigid(ground: Ground, times, geometry, structure: Structure) -> Response:
+    """The rigid slider's response: one pendulum of length L (``solve``)."""
     if structure.coulomb:
         return solve(ground, times, float(geometry.L), structure.device_friction(geometry), structure.damping)
     return solve(ground, times, float(geometry.L), math.nan, structure.damping, law=structure.rows(geometry))
@@ -113,3 +143,7 @@ def solve(ground: Ground, times, L, mu, zeta, compiled=None, law=None) -> Respon
                     None if law is None else coefficient[index],
                     None if temperature is None else temperature[index])
 
+
+
+RIGID = register(SliderKind("rigid", "one body with two convex caps: both surfaces slide in proportion, the device "
+                            "a pendulum of length L", _rigid, proportional=True))
