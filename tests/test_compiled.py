@@ -316,15 +316,15 @@ def test_a_record_per_case_read_only_runs_the_kernel_the_warm_up_compiles():
 
 def test_the_warm_up_has_a_part_per_kernel_and_knows_which_the_cache_lacks(tmp_path, monkeypatch):
     """``warmup.parts``: one part per kernel a run compiles (every registered model's planar batch and
-    spatial history, the structure's two kernels); ``cold``: those without numba's index in the cache."""
+    spatial history, the structure's four kernels); ``cold``: those without numba's index in the cache."""
     from dccss.mechanics import registry, scalar, warmup
-    from dccss.mechanics.structure import circular, exact
+    from dccss.mechanics.structure import articulated, circular, exact, series
 
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     kernels = {part: function for part, (function, _) in warmup.parts().items()}
     assert set(kernels.values()) == ({registry.model(n).planar.batch for n in registry.names()}
                                      | {registry.model(n).spatial for n in registry.names(lambda e: e.spatial)}
-                                     | {circular.plane, exact.line})
+                                     | {circular.plane, exact.line, articulated.articulated, series.series_line})
     assert warmup.cold() == list(kernels)
     name = kernels["structure plane"].__qualname__
     index = scalar.cache_folder(str(tmp_path)) / "mechanics_x" / f"models.{name}-1.nbi"

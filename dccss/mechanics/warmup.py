@@ -14,7 +14,7 @@ import numpy as np
 
 from . import compiled, registry, scalar, spatial, structure
 from .geometry import Geometry
-from .structure import circular, exact
+from .structure import articulated, circular, exact, series
 
 
 def _device():
@@ -26,15 +26,17 @@ def _device():
 def parts() -> dict:
     """{part: (kernel function, run compiling it)} of every registered model, planar and spatial, and of
     the isolated structure, the longest to compile first (planar 7-8 s, the structure's two-component
-    kernel 6 s, spatial 4 s, one-component 1 s)."""
+    kernels 6 s (rigid) and 20 s (articulated), spatial 4 s, one-component 1 s)."""
     planar = {f"planar {name}": (registry.model(name).planar.batch,
                                  lambda name=name: compiled.run(name, _device(), np.array([0.0, 1e-3])))
               for name in registry.names(lambda entry: entry.planar is not None)}
     space = {f"spatial {name}": (registry.model(name).spatial,
                                  lambda name=name: spatial.run(name, _device(), np.array([[0.0, 0.0], [1e-3, 0.0]])))
              for name in registry.names(lambda entry: entry.spatial is not None)}
-    return {**planar, "structure plane": (circular.plane, lambda: structure.warm(("plane",))), **space,
-            "structure line": (exact.line, lambda: structure.warm(("line",)))}
+    return {**planar, "structure plane": (circular.plane, lambda: structure.warm(("plane",))),
+            "structure articulated": (articulated.articulated, lambda: structure.warm(("articulated",))), **space,
+            "structure line": (exact.line, lambda: structure.warm(("line",))),
+            "structure series": (series.series_line, lambda: structure.warm(("series",)))}
 
 
 def cold() -> list:

@@ -77,11 +77,23 @@ __all__ = ["FRICTION_ON", "G", "Ground", "INTERVAL_WORK", "LINE_WORK", "Response
            "StructureError", "Surfaces", "VERTICAL_SUMMARIES", "period", "respond", "solve", "summarize", "warm"]
 
 
-def warm(kernels=("plane", "line")):
-    """Compile (or load) the two-component (``plane``) and one-component (``line``) kernels into the
-    on-disk cache."""
+def warm(kernels=("plane", "line", "articulated", "series")):
+    """Compile (or load) the structure's kernels into the on-disk cache: the rigid slider's two-component
+    (``plane``) and one-component (``line``) ones, the articulated slider's general (``articulated``) and
+    one-component (``series``) ones."""
+    import numpy as np
+
+    from ..friction import COULOMB, row
+    from . import series
+
     ground = Ground.from_samples([0.0, 0.01, 0.02], [[0.0, 0.0], [1.0, 0.5], [0.0, 0.0]])
     if "plane" in kernels:
         plane_history(ground, 2.0, 0.0, 0.05 * G, compiled=True)
     if "line" in kernels:
         line_history(ground.time, ground.a0[:, 0], ground.a1[:, 0], 2.0, 0.0, 0.05 * G, compiled=True)
+    if "articulated" in kernels:
+        rows = np.array([row(COULOMB, {"mu": 0.03}), row(COULOMB, {"mu": 0.06})])
+        articulated.articulated_history(ground, 0.9, 0.9, 0.0, rows, rows, compiled=True)
+    if "series" in kernels:
+        series.series_line_history(ground.time, ground.a0[:, 0], ground.a1[:, 0], G / 0.9, G / 0.9, 3.3, 0.0, 0.3, 0.6,
+                                   compiled=True)

@@ -82,18 +82,18 @@ def _rest(fx, fy, p1x, p1y, p3x, p3y, r1, r3, hold):
 
 
 @scalar.jit
-def _corner(wx, wy, ex, ey, m1, m3, L1, L3, coulomb):
+def _corner(wx, wy, ex, ey, m1, m3, L1, L3):
     """(phase, δ, σ) of both surfaces sliding with p_1 - p_3 = w and u̇ along e: the triangle
     μ̄_3 z_3 - μ̄_1 z_1 = w oriented so that e lies between z_3 and z_1 (BOTH), or SLIDE1 / SLIDE3 where e
-    lies outside both orientations' cones (beyond z_1's side: surface 3 holds). At δ = 0 under Coulomb
-    friction σ is the proportional split L_1 / L (the algebraic condition)."""
+    lies outside both orientations' cones (beyond z_1's side: surface 3 holds). At δ = 0 σ is the
+    proportional split L_1 / L (``corner.consistent`` then decides)."""
     w2 = wx * wx + wy * wy
     c = (m1 * m1 + m3 * m3 - w2) / (2.0 * m1 * m3)
     c = min(1.0, max(-1.0, c))
     size = math.acos(c)
     if size == 0.0:
         # z_1 = z_3 = -w / |w| (m1 > m3) or w / |w|; collinear with e where the phase is possible
-        return BOTH, 0.0, L1 / (L1 + L3) if coulomb else 0.5
+        return BOTH, 0.0, L1 / (L1 + L3)
     best, best_sigma, best_delta = -1.0, 0.0, 0.0
     for orientation in (1.0, -1.0):
         delta = orientation * size
@@ -228,10 +228,10 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp
                 zix, ziy = zix / size, ziy / size
                 z1x, z1y, z3x, z3y = (ex, ey, zix, ziy) if lower else (zix, ziy, ex, ey)
                 delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
-                sigma = 1.0 if lower else 0.0
-                coulomb = rows[0][0] == 0.0 and rows[1][0] == 0.0
-                if delta == 0.0 and coulomb:
-                    sigma = L1 / L
+                y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, 1.0 if lower else 0.0
+                p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
+                corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                sigma = y6[5]
                 state, starting, h_radau = BOTH, False, 0.0
                 continue
             # both slide
@@ -258,9 +258,13 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp
                 mm = max(m0 + m1 * when, 0.0)
                 c1m = device_mu(rows[0:1], 0.0, mm, t1, t1)
                 c3m = device_mu(rows[1:2], 0.0, mm, t3, t3)
-                coulomb = rows[0][0] == 0.0 and rows[1][0] == 0.0
                 state, delta, sigma = _corner(q0 / L1 - (x0 - q0) / L3, q1 / L1 - (x1 - q1) / L3, w0 / speed,
-                                              w1 / speed, c1m, c3m, L1, L3, coulomb)
+                                              w1 / speed, c1m, c3m, L1, L3)
+                if state == BOTH:
+                    y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
+                    p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
+                    corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                    sigma = y6[5]
                 starting, h_radau, h_next = False, 0.0, 0.0
                 continue
             y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
@@ -345,11 +349,13 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             h, refresh, first = taken / quotient, (1 if current else 2), False
             continue
         first = False
-        # the events at the step's end: a stop, or a surface stopping (σ out of [0, 1])
-        speed = math.sqrt((y0[2] + Z[14]) ** 2 + (y0[3] + Z[15]) ** 2)
+        # the events within the step: a stop (|u̇| down to REST_SPEED: on the collocation polynomial, whose
+        # u̇ may pass through zero between the step's ends, as it does along a line), or a surface stopping
+        # (σ out of [0, 1] at the step's end)
         sig = y0[5] + Z[17]
         event = NONE
-        if speed <= REST_SPEED:
+        slowest, bound = _slowest(y0, Z)
+        if slowest <= REST_SPEED:
             event = STOP
         elif sig <= 0.0 or sig >= 1.0:
             event = YIELD
@@ -364,8 +370,8 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             current = False
             h, refresh = taken / quotient, (1 if theta <= THETA else 2)
             continue
-        # locate it on the collocation polynomial, then step there
-        lo, hi = 0.0, 1.0
+        # locate it on the collocation polynomial (a stop before the slowest point), then step there
+        lo, hi = 0.0, bound if event == STOP else 1.0
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
@@ -376,17 +382,50 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             else:
                 lo = mid
         length = hi * taken
+        vx, vy = corner.dense(y0, Z, lo, 2), corner.dense(y0, Z, lo, 3)  # just before the event
+        for i in range(corner.N):  # the polynomial's state there, kept where the step to it fails
+            y[i] = corner.dense(y0, Z, hi, i)
         if length > RADAU_MIN:
             status, error, iterations, theta = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
                                                                  False, 1, Z, work)
-            if status != 0:
-                return TOO_SHORT, t, h
-            for i in range(corner.N):
-                y[i] = y0[i] + Z[2 * corner.N + i]
+            if status == 0:
+                for i in range(corner.N):
+                    y[i] = y0[i] + Z[2 * corner.N + i]
         if event == YIELD:
             y[5] = 1.0 if y[5] >= 0.5 else 0.0
+        else:  # at rest: u̇ along its direction just before (the step to the stop may end just past zero)
+            size = math.sqrt(vx * vx + vy * vy)
+            y[2], y[3] = 0.5 * REST_SPEED * vx / size, 0.5 * REST_SPEED * vy / size
         return event, t + length, h
     return NONE, end, h
+
+
+@scalar.jit
+def _slowest(y0, Z):
+    """The smallest |u̇| over the step on its collocation polynomial and where (the fraction of the step): the
+    least of 16 points, refined by a golden-section search around it."""
+    best, at = 1e300, 0.0
+    for i in range(1, 17):
+        theta = i / 16.0
+        vx, vy = corner.dense(y0, Z, theta, 2), corner.dense(y0, Z, theta, 3)
+        speed = vx * vx + vy * vy
+        if speed < best:
+            best, at = speed, theta
+    lo, hi = max(at - 1.0 / 16.0, 0.0), min(at + 1.0 / 16.0, 1.0)
+    for _ in range(40):
+        a = hi - 0.6180339887498949 * (hi - lo)
+        b = lo + 0.6180339887498949 * (hi - lo)
+        va = corner.dense(y0, Z, a, 2) ** 2 + corner.dense(y0, Z, a, 3) ** 2
+        vb = corner.dense(y0, Z, b, 2) ** 2 + corner.dense(y0, Z, b, 3) ** 2
+        if va < vb:
+            hi = b
+        else:
+            lo = a
+        if va < best:
+            best, at = va, a
+        if vb < best:
+            best, at = vb, b
+    return math.sqrt(best), at
 
 
 @scalar.jit

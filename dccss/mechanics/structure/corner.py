@@ -375,3 +375,35 @@ def dense(y0, Z, theta, i):
     l2 = theta * (theta - c1) * (theta - 1.0) / (c2 * (c2 - c1) * (c2 - 1.0))
     l3 = theta * (theta - c1) * (theta - c2) / ((1.0 - c1) * (1.0 - c2))
     return y0[i] + l1 * Z[i] + l2 * Z[N + i] + l3 * Z[2 * N + i]
+
+
+@scalar.jit
+def consistent(y, p, rows, t, F, M):
+    """y[5] = σ made consistent where σ relaxes within a nanosecond (its column of M nearly zero: the surfaces'
+    split decided by the algebraic condition, Coulomb friction along one line or a law that no longer changes
+    with the speed): the root in [0, 1] of the first equation, by bisection. Elsewhere σ is kept (its
+    relaxation, a real transient, is integrated)."""
+    sigma = y[5]
+    system(t, y, p, rows, F, M)
+    f = F[4]
+    step = 1e-6 if sigma < 0.5 else -1e-6
+    y[5] = sigma + step
+    system(t, y, p, rows, F, M)
+    slope = (F[4] - f) / step
+    y[5] = sigma
+    system(t, y, p, rows, F, M)
+    if slope == 0.0 or abs(M[1] / slope) > 1e-9:
+        return
+    lo, hi = 0.0, 1.0
+    y[5] = lo
+    system(t, y, p, rows, F, M)
+    low = F[4]
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        y[5] = mid
+        system(t, y, p, rows, F, M)
+        if (F[4] < 0.0) == (low < 0.0):
+            lo, low = mid, F[4]
+        else:
+            hi = mid
+    y[5] = 0.5 * (lo + hi)
