@@ -36,16 +36,18 @@ def _mu(slow, fast, rate, speed):
 
 
 @njit(cache=True)
-def _speed(size, gh, n, law):
+def _speed(size, gh, n, law, guess):
     """A surface's speed s >= 0 under c (|c| = ``size``): g_j h s + n g μ̄(s) = |c| (0 where |c| <= n g μ̄(0)),
     and ds/d|c|; μ̄(s) = scale (fast - (fast - slow) exp(-rate ratio s)), law = (slow, fast, rate, scale,
-    ratio). Bisection safeguarded Newton (the left side increases with s)."""
+    ratio). Bisection safeguarded Newton from ``guess`` (the left side increases with s)."""
     slow, fast, rate, scale, ratio = law[0], law[1], law[2], law[3], law[4]
     r0 = n * G * scale * slow
     if size <= r0:
         return 0.0, 0.0
+    if fast == slow or rate == 0.0:  # Coulomb's: linear
+        return (size - r0) / gh, 1.0 / gh
     lo, hi = 0.0, (size - r0) / gh  # μ̄(s) >= μ̄(0): the root lies below
-    s = hi
+    s = guess if 0.0 < guess < hi else hi
     slope = gh
     for _ in range(200):
         decay = math.exp(-rate * ratio * s)
@@ -58,7 +60,7 @@ def _speed(size, gh, n, law):
         nxt = s - phi / slope
         if not (lo < nxt < hi):
             nxt = 0.5 * (lo + hi)
-        if abs(nxt - s) <= 1e-16 * (1.0 + s) or hi - lo <= 1e-16 * hi:
+        if abs(nxt - s) <= 4e-16 * s or hi - lo <= 4e-16 * hi:
             s = nxt
             break
         s = nxt
@@ -66,7 +68,7 @@ def _speed(size, gh, n, law):
 
 
 @njit(cache=True)
-def _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3):
+def _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, guess):
     """D(Q) = h |Q|² / 2 - b·Q + a Σ_j Φ_j(|c_j|), Φ_j(ρ) = ∫ s dρ = g_j h s² / 2 + s r(s) - ∫_0^s r (s the speed
     at ρ, r(s) = n g μ̄_j(s)): the function whose gradient ``_gradient`` is."""
     out = 0.5 * h * (q0 * q0 + q1 * q1) - b[0] * q0 - b[1] * q1
@@ -74,7 +76,7 @@ def _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3):
         gj, law = (g1, law1) if j == 0 else (g3, law3)
         cx = q0 - gj * (u1[0] if j == 0 else u3x)
         cy = q1 - gj * (u1[1] if j == 0 else u3y)
-        speed = _speed(math.sqrt(cx * cx + cy * cy), gj * h, n, law)[0]
+        speed = _speed(math.sqrt(cx * cx + cy * cy), gj * h, n, law, guess[j])[0]
         if speed == 0.0:
             continue
         slow, fast, rate, scale, ratio = law[0], law[1], law[2], law[3], law[4]
@@ -87,7 +89,7 @@ def _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3):
 
 
 @njit(cache=True)
-def _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H):
+def _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H, guess):
     """∇D(Q) and (into H: H00, H01, H11) its Jacobian: hQ - b + a Σ_j v_j(Q)."""
     grad0, grad1 = h * q0 - b[0], h * q1 - b[1]
     H[0], H[1], H[2] = h, 0.0, h
@@ -96,9 +98,10 @@ def _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H):
         cx = q0 - gj * (u1[0] if j == 0 else u3x)
         cy = q1 - gj * (u1[1] if j == 0 else u3y)
         size = math.sqrt(cx * cx + cy * cy)
-        speed, ds = _speed(size, gj * h, n, law)
+        speed, ds = _speed(size, gj * h, n, law, guess[j])
         if speed == 0.0:
             continue
+        guess[j] = speed
         ex, ey = cx / size, cy / size
         grad0 += a * speed * ex
         grad1 += a * speed * ey
@@ -110,51 +113,60 @@ def _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H):
 
 
 @njit(cache=True)
-def step(u, u1, b, h, n, L1, L3, law1, law3, damp, Q):
-    """One step: (u, u_1) overwritten; returns the new velocity V and which surfaces slide. b = v - h a_g,
+def step(u, u1, b, h, n, L1, L3, law1, law3, damp, Q, guess, H, V):
+    """One step: (u, u_1) overwritten, the new velocity into V; returns which surfaces slide. b = v - h a_g,
     damp = 2ζω, ``law_j`` (``_speed``). The step's force per unit mass Q = g n F/W solves
     hQ - b + a Σ_j v_j(Q) = 0 (a = 1 + 2ζω h), v_j(Q) the surface's velocity under c_j = Q - g_j u_j
-    (g_j = g n / L_j): along c_j, of the speed s with g_j h s + n g μ̄_j(s) = |c_j| (0 where |c_j| holds it):
+    (g_j = g n / L_j): along c_j, of the speed s with g_j h s + n g μ̄_j(s) = |c_j| (0 where |c_j| holds it;
+    ``guess`` the surfaces' last speeds, where its root is sought from):
     the gradient of a strongly convex dual, whose zero Newton finds from the last step's Q (overwritten),
     halving a step until the dual falls enough (``_dual``). Surface j then moves by h v_j, with μ̄_j at the
     step's own speed (implicit)."""
     a = 1.0 + damp * h
     g1, g3 = n * G / L1, n * G / L3
     u3x, u3y = u[0] - u1[0], u[1] - u1[1]
-    H = np.zeros(3)
-    V = np.zeros(2)
-    grad0, grad1 = _gradient(Q[0], Q[1], u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H)
+    V[0], V[1] = 0.0, 0.0
+    grad0, grad1 = _gradient(Q[0], Q[1], u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H, guess)
+    scale = 1e-15 * (abs(b[0]) + abs(b[1]) + h * (abs(Q[0]) + abs(Q[1]))) + 1e-300
     for _ in range(100):
+        if abs(grad0) + abs(grad1) <= scale:  # converged to rounding
+            break
         det = H[0] * H[2] - H[1] * H[1]
         d0 = -(H[2] * grad0 - H[1] * grad1) / det
         d1 = -(H[0] * grad1 - H[1] * grad0) / det
         norm = math.sqrt(grad0 * grad0 + grad1 * grad1)
-        # a Newton step, halved until it lowers D enough (Armijo) or, once D's changes are below its rounding,
-        # the gradient's size
-        d_now = _dual(Q[0], Q[1], u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3)
+        # a Newton step, halved until the gradient's size falls or, where it does not (a kink of the piecewise
+        # Hessian), until it lowers D enough (Armijo)
+        d_now = math.nan
         slope = grad0 * d0 + grad1 * d1
         t = 1.0
         while True:
             q0, q1 = Q[0] + t * d0, Q[1] + t * d1
-            g0, g1_ = _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H)
-            if math.sqrt(g0 * g0 + g1_ * g1_) < norm * (1.0 - 1e-4 * t) or t < 1e-12 or \
-                    _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3) <= d_now + 1e-4 * t * slope:
+            g0, g1_ = _gradient(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, H, guess)
+            if math.sqrt(g0 * g0 + g1_ * g1_) < norm * (1.0 - 1e-4 * t) or t < 1e-12:
+                break
+            if d_now != d_now:
+                d_now = _dual(Q[0], Q[1], u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, guess)
+            if _dual(q0, q1, u1, u3x, u3y, b, h, a, g1, g3, n, law1, law3, guess) <= d_now + 1e-4 * t * slope:
                 break
             t *= 0.5
         Q[0], Q[1] = q0, q1
         grad0, grad1 = g0, g1_
         if abs(t * d0) + abs(t * d1) <= 1e-15 * (abs(Q[0]) + abs(Q[1])) + 1e-300:
             break
-    slid = [False, False]
+    slid1, slid3 = False, False
     for j in range(2):
         gj, law = (g1, law1) if j == 0 else (g3, law3)
         cx = Q[0] - gj * (u1[0] if j == 0 else u3x)
         cy = Q[1] - gj * (u1[1] if j == 0 else u3y)
         size = math.sqrt(cx * cx + cy * cy)
-        speed = _speed(size, gj * h, n, law)[0]
+        speed = _speed(size, gj * h, n, law, guess[j])[0]
         if speed == 0.0:
             continue
-        slid[j] = True
+        if j == 0:
+            slid1 = True
+        else:
+            slid3 = True
         dx, dy = h * speed * cx / size, h * speed * cy / size
         u[0] += dx
         u[1] += dy
@@ -163,14 +175,14 @@ def step(u, u1, b, h, n, L1, L3, law1, law3, damp, Q):
             u1[1] += dy
         V[0] += dx / h
         V[1] += dy / h
-    return V, slid[0], slid[1]
+    return slid1, slid3
 
 
 @njit(cache=True)
 def _run(time, ag, vertical, L1, L3, law1, law3, damp, h, out_u, out_u1, flags, state):
     u, u1, v = state[0:2].copy(), state[2:4].copy(), state[4:6].copy()
     out_u[0], out_u1[0] = u, u1
-    b, Q = np.zeros(2), np.zeros(2)
+    b, Q, guess, H, V = np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(3), np.zeros(2)
     for k in range(len(time) - 1):
         steps = max(1, int(round((time[k + 1] - time[k]) / h)))
         dt = (time[k + 1] - time[k]) / steps
@@ -180,7 +192,7 @@ def _run(time, ag, vertical, L1, L3, law1, law3, damp, h, out_u, out_u1, flags, 
             n = max(1.0 + (vertical[k] * (1 - s) + vertical[k + 1] * s) / G, 0.0)
             b[0] = v[0] - dt * (ag[k, 0] * (1 - s) + ag[k + 1, 0] * s)
             b[1] = v[1] - dt * (ag[k, 1] * (1 - s) + ag[k + 1, 1] * s)
-            V, f1, f3 = step(u, u1, b, dt, n, L1, L3, law1, law3, damp, Q)
+            f1, f3 = step(u, u1, b, dt, n, L1, L3, law1, law3, damp, Q, guess, H, V)
             v[0], v[1] = V[0], V[1]
         out_u[k + 1] = u
         out_u1[k + 1] = u1
