@@ -763,6 +763,10 @@ def _scene(fig, ds, frames, exaggeration=None, name=None):
     """The scene of a history: the planar device, or the spatial view of a bidirectional one (``plan.Scene``);
     its heading says ``name``, by default its case (``viewer.case_text``)."""
     name = case_text(ds.attrs) if name is None else name
+    if ds.attrs.get("model") == "articulated":
+        from .hinged import Scene as ArticulatedScene
+
+        return ArticulatedScene(fig, ds, frames, name)
     if ds.attrs.get("motion") != "bidirectional":
         return Scene(fig, ds, frames, exaggeration, name)
     from .plan import Scene as SpatialScene

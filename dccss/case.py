@@ -82,7 +82,7 @@ from .mechanics.capacity import CAPACITY_POLICIES
 from .mechanics.geometry import ANGLES, LENGTHS, PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
-from .mechanics.structure import FRICTION_ON, Structure, StructureError
+from .mechanics.structure import FRICTION_ON, SLIDERS, Structure, StructureError
 from .paper.prototypes import TABLE1
 from .schema import errors as schema_errors
 from .schema import load_yaml, schema
@@ -491,6 +491,9 @@ class Case:
     capacity: str = "continue"
     on_failure: str = "error"
     structure: Structure | None = None
+    slider: str = "rigid"
+    hinge: float = 0.0
+    friction: tuple | None = None
 
     def run(self, progress=None):
         """Simulate the case: an xarray.Dataset (``progress(n, N)``: as ``simulate``'s)."""
@@ -500,7 +503,7 @@ class Case:
         return simulate(self.geometry, self.excitation, model=self.model, dt=self.dt,
                         theta2_0=self.theta2_0, normals=self.normals, options=self.options,
                         capacity=self.capacity, on_failure=self.on_failure, attrs=attrs, progress=progress,
-                        structure=self.structure)
+                        structure=self.structure, slider=self.slider, hinge=self.hinge, friction=self.friction)
 
 
 def newton_from(value, key="newton") -> NewtonOptions:
@@ -523,8 +526,21 @@ STRUCTURE = SCHEMA["$defs"]["structure"]
 STRUCTURE_OPTIONAL = {k: v["default"] for k, v in STRUCTURE["properties"].items() if k not in STRUCTURE["required"]}
 
 
-def structure_from(value, key="structure") -> Structure | None:
-    """A Structure from its mapping {friction, damping} (None stays None); errors name the key."""
+def slider_from(value, key="slider") -> tuple[str, float]:
+    """(kind, hinge) of a ``slider``: a kind's name, or {kind, hinge}; errors name the key."""
+    if isinstance(value, dict):
+        check_keys(value, key, ("kind",), ("hinge",))
+        problems = Problems(value)
+        kind = problems.check("kind", choice, value["kind"], f"{key}.kind", tuple(SLIDERS))
+        hinge = problems.check("hinge", number, value.get("hinge", 0.0), f"{key}.hinge")
+        problems.raise_if_any()
+        return kind, hinge
+    return choice(value, key, tuple(SLIDERS)), 0.0
+
+
+def structure_from(value, key="structure", slider="rigid", hinge=0.0) -> Structure | None:
+    """A Structure from its mapping {friction, damping} (None stays None) on a ``slider`` with its ``hinge``;
+    errors name the key."""
     if value is None:
         return None
     check_keys(value, key, tuple(STRUCTURE["required"]), STRUCTURE_OPTIONAL)
@@ -538,7 +554,7 @@ def structure_from(value, key="structure") -> Structure | None:
     friction_on = problems.check("friction_on", choice, value["friction_on"], f"{key}.friction_on", FRICTION_ON)
     problems.raise_if_any()
     try:
-        return Structure(friction, damping, friction_on=friction_on, factor=factor)
+        return Structure(friction, damping, friction_on=friction_on, factor=factor, slider=slider, hinge=hinge)
     except StructureError as err:
         raise CaseError(*(m.replace("structure.", f"{key}.", 1) for m in err.messages)) from None
 
@@ -572,10 +588,18 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
         problems.add("normals", f"normals: two-component ground motion runs the spatial models, which use signed "
                                 f"normals only; got {m['normals']!r} (unsigned normals reproduce the paper's planar "
                                 f"computation)")
-    structure = problems.check("structure", structure_from, m["structure"])
+    slider = problems.check("slider", slider_from, m["slider"])
+    kind, hinge = slider if slider is not None else ("rigid", 0.0)
+    structure = problems.check("structure", structure_from, m["structure"], "structure", kind, hinge)
     if structure is not None and geometry is not None:
         problems.check("structure", _device_friction, structure, geometry)
+        if kind == "articulated":
+            problems.check("slider", _pendulums, structure, geometry)
+    friction = problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None)
     model = problems.check("model", choice, m["model"], "model", registry.names()) if "model" in m else None
+    if kind == "articulated" and model not in (None, "compliant"):
+        problems.add("model", f"model: an articulated slider's halves stay seated on their surfaces (compliant sliding "
+                              f"by construction); the paper's {model} is the rigid pad's: give model: compliant")
     theta2_0 = problems.check("theta2_0", number, m["theta2_0"], "theta2_0")
     normals = problems.check("normals", choice, m["normals"], "normals", NORMALS)
     capacity = problems.check("capacity", choice, m["capacity"], "capacity", CAPACITY_POLICIES)
@@ -583,7 +607,32 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     problems.raise_if_any(schema_errors("case", mapping))
     return Case(geometry=geometry, excitation=excitation, dt=dt, model=model, theta2_0=np.radians(theta2_0),
                 normals=normals, options=options, id=m["id"], parameters_hash=parameters_hash(mapping),
-                capacity=capacity, on_failure=on_failure, structure=structure)
+                capacity=capacity, on_failure=on_failure, structure=structure, slider=kind, hinge=hinge,
+                friction=friction)
+
+
+def _imposed_friction(value, kind, structure) -> tuple | None:
+    """The surfaces' friction of an articulated slider under the imposed displacement (``friction``)."""
+    if value is None:
+        if kind == "articulated" and not structure:
+            raise CaseError("friction: an articulated slider without a structure needs its surfaces' Coulomb "
+                            "coefficients, friction: [mu1, mu3] (each at its sliding surface, each above 0)")
+        return None
+    if kind != "articulated" or structure:
+        raise CaseError("friction: only an articulated slider under the imposed displacement takes it (with a "
+                        "structure, its friction is structure.friction with friction_on: surfaces)")
+    if not (isinstance(value, list) and len(value) == 2 and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) and 0.0 < x < 1.0 for x in value)):
+        raise CaseError(f"friction: expected [mu1, mu3], two numbers each in 0 < mu < 1, got {value!r}")
+    return tuple(float(x) for x in value)
+
+
+def _pendulums(structure, geometry):
+    """An articulated structure's pendulum lengths on ``geometry``, checked (a CaseError otherwise)."""
+    try:
+        return structure.pendulums(geometry)
+    except StructureError as err:
+        raise CaseError(str(err).replace("structure.hinge", "slider.hinge")) from None
 
 
 def _device_friction(structure, geometry):

@@ -325,14 +325,20 @@ def plot(path, output, at=None) -> str:
         raise AnimationError(f"output {str(output)!r}: unknown extension {Path(output).suffix or '(none)'!r}, "
                              "expected .png or .pdf")
     ds = open_result(path)
+    articulated = ds.attrs.get("model") == "articulated"
     try:
-        fig = figure(ds, at)
+        if articulated:
+            from . import hinged
+
+            fig, steps = hinged.figure(ds, at), hinged.instants(ds, at)
+        else:
+            fig, steps = figure(ds, at), instants(view(ds), at)
     except ValueError as err:
         raise AnimationError(f"--at: {err}") from None
     metadata = drawing.PNG_METADATA if suffix == ".png" else drawing.PDF_METADATA
     drawing.freeze(fig)
     write_atomic(output, lambda f: fig.savefig(f, format=suffix[1:], dpi=drawing.DPI, metadata=metadata))
-    steps = ", ".join(f"{ds['t'].values[n]:g} s" for n in instants(view(ds), at))
+    steps = ", ".join(f"{ds['t'].values[n]:g} s" for n in steps)
     return f"{output}: {ds.sizes['t'] - 1} steps, sections at {steps}"
 
 

@@ -246,6 +246,8 @@ def structure_variables(response, components, steps) -> dict:
              ("shear_ratio", response.shear_ratio, "1", "device force over the supported weight F/W"),
              ("z", response.z, "1", "friction state z of the device (|z| <= 1; du/dt over |du/dt| while sliding)"))
     for name, values, units, long_name in table:
+        if values is None:  # an articulated slider's device has no one friction state: each surface's
+            continue
         if components == 1:
             out[name] = variable(t, values[:steps, 0], units, long_name)
         else:
@@ -327,3 +329,61 @@ def imposed(ds) -> np.ndarray:
 def is_bidirectional(ds) -> bool:
     """Whether a dccss dataset holds a bidirectional (spatial) history."""
     return ds.attrs.get("motion") == "bidirectional"
+
+
+def articulated_dataset(times, excitation, geometry, stroke, surfaces, force, *, dt, slider_attrs, response=None,
+                        steps=None, attrs=None) -> xr.Dataset:
+    """Dataset of one case of an articulated slider (``mechanics.structure.sliders``): the motion imposed on the
+    device (Xg, RB1 relative to RB3: minus the stroke u), each surface's displacement u_j (the hinge relative
+    to C¹, C³ relative to the hinge; u_1 + u_3 = u), each half's rotation about its sphere centre, the hinge
+    rotation, F/W and which surfaces slide; with a structure (``response``) its variables too
+    (``structure_variables``) and each surface's friction state and coefficient. ``stroke`` (T, c),
+    ``surfaces`` a ``Surfaces`` (or the same fields), ``force`` F/W (T, c)."""
+    t = (TIME,)
+    n = len(times) if steps is None else steps
+    two = stroke.shape[1] == 2
+    L1, L3 = surfaces.pendulums
+    data = {}
+
+    def vector(name, values, units, long_name):
+        if two:
+            for i, axis in enumerate("xy"):
+                data[f"{name}_{axis}"] = variable(t, values[:n, i], units, f"{long_name}, {axis} component")
+        else:
+            data[name] = variable(t, values[:n, 0], units, long_name)
+
+    vector("Xg", 0.0 - stroke, "m", "motion imposed on the device: RB1 relative to RB3 (minus the stroke)")
+    if response is None:
+        vector("stroke", stroke, "m", "stroke u: RB3 relative to RB1 (the superstructure's displacement relative to "
+                                      "the ground)")
+        vector("shear_ratio", force, "1", "device force over the supported weight F/W (quasi-static)")
+    for j, (plate, Lj) in enumerate(((1, L1), (3, L3))):
+        what = "the hinge relative to C1" if plate == 1 else "C3 relative to the hinge"
+        vector(f"stroke_{plate}", surfaces.stroke[..., j], "m", f"displacement u_{plate} on surface {plate} ({what})")
+        size = np.linalg.norm(surfaces.stroke[:n, :, j], axis=1)
+        tilt = np.degrees(np.arcsin(np.clip(surfaces.stroke[:n, 0, j] / Lj, -1, 1))) if not two else \
+            np.degrees(np.arcsin(np.clip(size / Lj, -1, 1)))
+        data[f"theta_{plate}" if not two else f"tilt_{plate}"] = variable(
+            t, tilt, "degree", f"rotation of the half on surface {plate} about C{plate}" +
+            (" (sin = u_j / L_j)" if not two else ": its tilt from the vertical"))
+        data[f"sliding_{plate}"] = variable(
+            t, surfaces.sliding[:n, j].astype(np.int8), "1", f"surface {plate} slides",
+            flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="holds slides")
+    data["hinge_rotation"] = variable(t, np.degrees(surfaces.hinge[:n]), "degree",
+                                      "rotation of the hinge, the angle between the two halves" +
+                                      (" (theta_1 - theta_3)" if not two else " (>= 0)"))
+    if response is not None:
+        data.update(structure_variables(response, stroke.shape[1], n))
+        for j, plate in enumerate((1, 3)):
+            vector(f"z_{plate}", surfaces.z[..., j], "1", f"friction state z_{plate} of surface {plate} (|z| <= 1; "
+                                                         f"along its sliding while it slides)")
+            data[f"friction_coefficient_{plate}"] = variable(
+                t, surfaces.friction[:n, j], "1", f"friction coefficient mu_{plate} of surface {plate} (at its "
+                                                   f"sliding speed; at rest while it holds)")
+    ds = xr.Dataset(data, coords={TIME: time_coordinate(np.asarray(times)[:n])})
+    ds.attrs = global_attrs("DCCSS articulated slider: two pendulums in series", "articulated slider",
+                            model="articulated", motion="bidirectional" if two else "unidirectional",
+                            dt_s=float(dt), **geometry_attrs(geometry), **excitation.attrs(), **slider_attrs,
+                            **(attrs or {}))
+    ds.attrs["source"] += ", articulated slider (two pendulums in series, Fenz and Constantinou 2006)"
+    return ds

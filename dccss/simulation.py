@@ -4,6 +4,7 @@ components; run by ``mechanics.runs``) and the breakaway (first-step) analysis."
 from __future__ import annotations
 
 import warnings
+from types import SimpleNamespace
 
 import numpy as np
 import xarray as xr
@@ -14,12 +15,13 @@ from .mechanics.capacity import CapacityError
 from .mechanics.geometry import Geometry
 from .mechanics.newton import NewtonOptions
 from .mechanics.structure import Structure, respond
-from .results import breakaway_dataset, history_dataset, spatial_dataset, structure_variables
+from .results import articulated_dataset, breakaway_dataset, history_dataset, spatial_dataset, structure_variables
 
 
 def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, normals="signed",
              options: NewtonOptions = NewtonOptions(), capacity="continue", on_failure="error",
-             attrs: dict | None = None, progress=None, structure: Structure | None = None) -> xr.Dataset:
+             attrs: dict | None = None, progress=None, structure: Structure | None = None,
+             slider: str = "rigid", hinge: float = 0.0, friction=None) -> xr.Dataset:
     """Run one case and return its dataset.
 
     Parameters
@@ -67,6 +69,15 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
         by -u relative to RB3. The dataset keeps the ground motion (``Xg``) beside the stroke, its
         velocity, the force ratio F/W, the friction state z and whether the structure sticks
         (``results.structure_variables``).
+    slider, hinge, friction : optional
+        The device's construction (``mechanics.structure.sliders``): ``rigid`` (the paper's pad, the
+        default) or ``articulated`` (two halves on a hinge ``hinge`` m above the pad's centre, each surface
+        sliding by its own friction). With a structure these are the structure's (its ``slider`` and
+        ``hinge``). An articulated slider without a structure is driven quasi-statically by the imposed
+        displacement (one component; its slider's mass neglected), its surfaces' Coulomb coefficients
+        ``friction`` = (μ1, μ3) (each at its sliding surface, as a structure's ``friction_on: surfaces``).
+        Its dataset (``results.articulated_dataset``) holds each surface's share of the stroke, the
+        halves' and the hinge's rotations; ``model`` is not used (the halves stay seated on their surfaces).
 
     Returns
     -------
@@ -79,12 +90,17 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     the model describes no real device, and a smaller dt does not help.
     """
     _check_arguments(geometry, excitation, theta2_0, structure)  # options: runs.history checks them
+    if structure is not None:
+        slider, hinge = structure.slider, structure.hinge
     times = step_times(excitation, dt)
     left = excitation.t_end - times[-1]
     if left > 1e-9 * float(dt):
         warnings.warn(f"dt = {float(dt):g} s does not divide the excitation's duration "
                       f"({excitation.t_end - excitation.t_start:g} s): the history ends at t = {times[-1]:.6g} s, "
                       f"{left:.3g} s before the motion does", stacklevel=2)
+    if slider == "articulated":
+        return articulated(geometry, excitation, times, dt=dt, structure=structure, hinge=hinge, friction=friction,
+                           capacity=capacity, on_failure=on_failure, attrs=attrs, progress=progress)
     response, lifted = None, None
     if structure is None:
         imposed = excitation.displacement(times)
@@ -257,3 +273,98 @@ def breakaway(geometry, theta2_0=None, dXg=None, *, theta2_0_deg=None, normals="
         ds = ds.isel(dXg=0)
         ds.attrs["dXg_m"] = float(steps)
     return ds
+
+
+def articulated(geometry, excitation, times, *, dt, structure=None, hinge=0.0, friction=None, capacity="continue",
+                on_failure="error", attrs=None, progress=None) -> xr.Dataset:
+    """One case of an articulated slider (``simulate``): driven by its structure (``respond``), or without one
+    quasi-statically by the imposed displacement (``series.quasi_static``, one component). A half that reaches
+    its plate's ring (|u_j| = L_j sin(α^j - α^2j)) is flagged in the attributes (``ring_<j>_reached_at_s``,
+    ``ring_<j>_exceeded_by_m``) and handled by ``capacity`` as the rigid pad's ring is."""
+    from .mechanics.structure import sliders
+    from .mechanics.structure.series import BOTH, SLIDE1, SLIDE3, quasi_static
+
+    lifted = None
+    if structure is None:
+        if excitation.components != 1:
+            raise ValueError("an articulated slider under an imposed displacement is modelled in one component: for "
+                             "two, drive it through a structure (structure: {friction: [mu1, mu3], friction_on: "
+                             "surfaces})")
+        mu1, mu3 = _surfaces_friction(friction)
+        L1, L3 = sliders.pendulums(geometry, hinge)
+        if not (L1 > 0.0 and L3 > 0.0):
+            raise ValueError(f"hinge: {hinge!r} m above the pad's centre puts the hinge beyond a sphere centre "
+                             f"(L_1 = {L1:.4g} m, L_3 = {L3:.4g} m)")
+        m1, m3 = mu1 * float(geometry.R1) / L1, mu3 * float(geometry.R3) / L3
+        u = 0.0 - excitation.displacement(times)
+        u1, f, phase = quasi_static(u, L1, L3, m1, m3)
+        split = np.stack([u1, u - u1], axis=-1)[:, None, :]
+        surfaces = SimpleNamespace(
+            stroke=split, pendulums=(L1, L3), hinge=np.arcsin(np.clip(u1 / L1, -1, 1)) -
+            np.arcsin(np.clip((u - u1) / L3, -1, 1)),
+            sliding=np.stack([(phase == SLIDE1) | (phase == BOTH), (phase == SLIDE3) | (phase == BOTH)], axis=-1))
+        stroke, force, response = u[:, None], f[:, None], None
+        slider_attrs = {"slider": "articulated", "slider_hinge_m": float(hinge), "friction_surfaces": np.array(
+            [mu1, mu3]), "friction_force_level": np.array([m1, m3]), "motion_imposed": "quasi-static"}
+    else:
+        response = respond(excitation.ground_acceleration(), times, geometry, structure)
+        lifted = _uplift(response, times, capacity, on_failure)
+        surfaces, stroke, force = response.surfaces, response.stroke, response.shear_ratio
+        L1, L3 = surfaces.pendulums
+        slider_attrs = {**structure.attrs(geometry), "slider": "articulated", "slider_hinge_m": float(hinge),
+                        "structure_stroke_max_abs_m": response.peaks[0],
+                        "structure_shear_ratio_max_abs": response.peaks[1],
+                        "stroke_1_max_abs_m": surfaces.peaks[0], "stroke_3_max_abs_m": surfaces.peaks[1],
+                        "hinge_rotation_max_abs_deg": float(np.degrees(surfaces.hinge_peak))}
+        if response.normal is not None:
+            slider_attrs["structure_normal_ratio_min"] = response.peaks[2]
+    rings = sliders.ring_strokes(geometry, hinge)
+    slider_attrs.update(pendulum_length_1_m=L1, pendulum_length_3_m=L3, ring_stroke_1_m=rings[0],
+                        ring_stroke_3_m=rings[1])
+    steps = len(times) if lifted is None else lifted
+    size = np.linalg.norm(surfaces.stroke[:steps], axis=1)  # (T, 2)
+    first, reached = steps, {}
+    for j, plate in enumerate((1, 3)):
+        beyond = np.nonzero(size[:, j] >= rings[j])[0]
+        if beyond.size:
+            reached[plate] = int(beyond[0])
+            slider_attrs[f"ring_{plate}_reached_at_s"] = float(times[beyond[0]])
+            slider_attrs[f"ring_{plate}_exceeded_by_m"] = float(size[:, j].max() - rings[j])
+            first = min(first, int(beyond[0]))
+    failed = None
+    if reached and capacity in ("stop", "error"):
+        plate = min(reached, key=reached.get)
+        j = 0 if plate == 1 else 1
+        message = (f"the half on surface {plate} reaches the ring of RB{plate} at t = {times[first]:.6g} s "
+                   f"(u_{plate} = {size[first, j]:.4g} m, its ring at {rings[j]:.4g} m)")
+        if capacity == "error" and on_failure != "mark":
+            raise CapacityError(message + " (capacity: error)")
+        failed = message if capacity == "error" else None
+        slider_attrs["stopped_at_s" if capacity == "stop" else "failure_time_s"] = float(times[first])
+        steps = first + 1
+    if progress is not None:
+        progress(steps, len(times))
+    ds = articulated_dataset(times, excitation, geometry, stroke, surfaces, force, dt=dt, slider_attrs=slider_attrs,
+                             response=response, steps=steps, attrs=attrs)
+    ds.attrs["capacity_policy"] = capacity
+    ds.attrs["failed"] = int(failed is not None)
+    if failed is not None:
+        ds.attrs.update(failure_kind="capacity", failure_message=failed)
+    if response is not None and response.uplift:
+        ds.attrs.update(uplift_attrs(response))
+    return ds
+
+
+def _surfaces_friction(friction) -> tuple[float, float]:
+    """(μ1, μ3) of an articulated slider under the imposed displacement; a ValueError names ``friction``."""
+    if friction is None:
+        raise ValueError("friction: an articulated slider without a structure needs its surfaces' Coulomb "
+                         "coefficients, friction: [mu1, mu3] (each at its sliding surface)")
+    try:
+        mu1, mu3 = (float(x) for x in friction)
+    except (TypeError, ValueError):
+        raise ValueError(f"friction: expected two numbers [mu1, mu3], got {friction!r}") from None
+    if not all(0.0 < x < 1.0 for x in (mu1, mu3)):
+        raise ValueError(f"friction: each surface's mu must lie in 0 < mu < 1 (with none, which surface slides is "
+                         f"not decided), got {[mu1, mu3]}")
+    return mu1, mu3

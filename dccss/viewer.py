@@ -34,10 +34,16 @@ def open_result(path):
         ds = xr.load_dataset(path)
     except Exception as err:  # each netCDF engine raises its own errors
         raise AnimationError(f"cannot read {str(path)!r} as a netCDF file: {err}") from None
-    if ds.attrs.get("model") not in MODEL_TITLES:
+    if ds.attrs.get("model") not in (*MODEL_TITLES, "articulated"):
         raise AnimationError(f"{str(path)!r} is not a dccss result: its global attribute 'model' is "
-                             f"{ds.attrs.get('model', 'missing')!r}, expected one of {', '.join(MODEL_TITLES)}")
-    names = SPATIAL_NAMES if ds.attrs.get("motion") == "bidirectional" else Q_NAMES
+                             f"{ds.attrs.get('model', 'missing')!r}, expected one of {', '.join(MODEL_TITLES)} or "
+                             f"articulated")
+    if ds.attrs.get("model") == "articulated":  # an articulated slider's history (dccss.hinged)
+        two = ds.attrs.get("motion") == "bidirectional"
+        names = [f"{n}_{c}" for n in ("stroke_1", "stroke_3") for c in "xy"] + ["hinge_rotation"] if two else \
+            ["stroke_1", "stroke_3", "hinge_rotation"]
+    else:
+        names = SPATIAL_NAMES if ds.attrs.get("motion") == "bidirectional" else Q_NAMES
     missing = ([] if "t" in ds.dims else ["the time coordinate t"]) + [name for name in names if name not in ds]
     if missing:
         raise AnimationError(f"{str(path)!r} is not a dccss time history (a breakaway sweep or a study grid?): it "

@@ -97,10 +97,11 @@ def test_the_laws_slopes_equal_finite_differences(law):
         dv, dn = surface_mu_slopes(r, speed, normal, temperature)
         e = 1e-6
 
-        def mu(v):
+        def mu(v, normal=normal, temperature=temperature):
             return surface_mu(r, v, normal, temperature)
         # central differences, one-sided of second order at zero speed (μ is defined for v >= 0)
-        fv = (mu(speed + e) - mu(speed - e)) / (2 * e) if speed > 0 else (-3 * mu(0.0) + 4 * mu(e) - mu(2 * e)) / (2 * e)
+        fv = (mu(speed + e) - mu(speed - e)) / (2 * e) if speed > 0 else \
+            (-3 * mu(0.0) + 4 * mu(e) - mu(2 * e)) / (2 * e)
         fn = (surface_mu(r, speed, normal + e, temperature) - surface_mu(r, speed, normal - e, temperature)) / (2 * e)
         assert dv == pytest.approx(fv, rel=1e-6, abs=1e-9)
         assert dn == pytest.approx(fn, rel=1e-6, abs=1e-12)
@@ -152,8 +153,8 @@ def test_the_radau_step_equals_scipys_radau_on_a_turning_slide():
     for law in ROWS:
         rows = ROWS[law]
         y0 = np.array([0.1, 0.02, 0.3, 0.1, 0.3, 0.5])
-        reference = solve_ivp(lambda t, y: _rates(y, t, rows), (0.0, 0.3), y0, method="Radau", rtol=1e-11,
-                              atol=1e-13)
+        reference = solve_ivp(lambda t, y, rows=rows: _rates(y, t, rows), (0.0, 0.3), y0, method="Radau",
+                              rtol=1e-11, atol=1e-13)
         work, Z = corner.workspace(), np.zeros(18)
         t, y, h, k0, first = 0.0, y0.copy(), 1e-3, _rates(y0, 0.0, rows), True
         while t < 0.3 - 1e-15:

@@ -114,7 +114,8 @@ def test_the_case_keys_and_defaults_come_from_the_schema():
 
     assert case.REQUIRED == ("prototype", "excitation", "dt", "model")
     assert case.OPTIONAL == {"theta2_0": 0.0, "normals": "signed", "newton": None, "id": None,
-                             "capacity": "continue", "on_failure": "error", "structure": None}
+                             "capacity": "continue", "on_failure": "error", "structure": None, "slider": "rigid",
+                             "friction": None}
     assert case.EXCITATION_KEYS["record"] == ("file",)
     assert case.EXCITATION_OPTIONAL["record"] == ("scale", "window", "baseline", "units", "azimuth", "rotation",
                                                   "component", "vertical", "pair_span")

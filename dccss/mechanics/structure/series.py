@@ -205,3 +205,49 @@ def series_line_history(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, compiled=
     if status == CHATTER:
         raise chatter(time[k])
     return u, v, u1, phase, force
+
+
+def quasi_static(u, L1, L3, m1, m3):
+    """An articulated slider under an imposed stroke u (m, one component, straight lines between its samples),
+    the slider's mass neglected and no superstructure: each surface's share u_1 (u_3 = u - u_1), the force
+    per unit normal force f = F/N and the phase at each sample, from rest centred; m_j = μ̄_j (force-level
+    coefficients, Coulomb).
+
+    Fenz and Constantinou's regimes, rate-independent: moving in the direction z, surface j slides where
+    f reaches its threshold p_j + z μ̄_j (p_j = u_j / L_j), the lower one first; while one slides, f grows by
+    du / L_j (its pendulum alone) until it reaches the other's threshold; then both slide, u̇_1 / L_1 =
+    u̇_3 / L_3, and f grows by du / L. On a reversal both hold and f falls at a fixed stroke (the loop's
+    vertical unloading, by 2 μ̄_j for the surface that slides back first) until a threshold of the new
+    direction is reached. Exact: the pieces are straight lines in u."""
+    u = np.asarray(u, dtype=float)
+    n = u.size
+    u1, f = np.zeros(n), np.zeros(n)
+    phase = np.full(n, STUCK, dtype=np.int64)
+    x1, x, force, state = 0.0, 0.0, 0.0, STUCK
+    for k in range(1, n):
+        du = u[k] - x
+        if du == 0.0:
+            u1[k], f[k], phase[k] = x1, force, state
+            continue
+        z = 1.0 if du > 0.0 else -1.0
+        while z * (u[k] - x) > 0.0:
+            t1, t3 = x1 / L1 + z * m1, (x - x1) / L3 + z * m3  # the thresholds in the direction of motion
+            if abs(t1 - t3) <= TIE * max(m1, m3):
+                # both slide in proportion to the sample
+                x1 += L1 / (L1 + L3) * (u[k] - x)
+                x, state = u[k], BOTH
+                force = x1 / L1 + z * m1
+                continue
+            if z * (t1 - t3) < 0.0:  # surface 1 first, until its threshold reaches surface 3's
+                reach = x + L1 * (t3 - t1)
+                end = u[k] if z * (u[k] - reach) <= 0.0 else reach
+                x1 += end - x
+                x, state = end, SLIDE1
+                force = x1 / L1 + z * m1
+            else:
+                reach = x + L3 * (t1 - t3)
+                end = u[k] if z * (u[k] - reach) <= 0.0 else reach
+                x, state = end, SLIDE3
+                force = (x - x1) / L3 + z * m3
+        u1[k], f[k], phase[k] = x1, force, state
+    return u1, f, phase
