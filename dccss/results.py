@@ -333,8 +333,9 @@ def is_bidirectional(ds) -> bool:
 
 def articulated_dataset(times, excitation, geometry, stroke, surfaces, force, *, dt, slider_attrs, response=None,
                         steps=None, attrs=None) -> xr.Dataset:
-    """Dataset of one case of an articulated slider (``mechanics.structure.sliders``): the motion imposed on the
-    device (Xg, RB1 relative to RB3: minus the stroke u), each surface's displacement u_j (the hinge relative
+    """Dataset of one case of an articulated slider (``mechanics.structure.sliders``): the ground displacement Xg
+    (imposed on the device, or with a structure beside its stroke, as a rigid slider's history keeps it), each
+    surface's displacement u_j (the hinge relative
     to C¹, C³ relative to the hinge; u_1 + u_3 = u), each half's rotation about its sphere centre, the hinge
     rotation, F/W and which surfaces slide; with a structure (``response``) its variables too
     (``structure_variables``) and each surface's friction state and coefficient. ``stroke`` (T, c),
@@ -352,8 +353,8 @@ def articulated_dataset(times, excitation, geometry, stroke, surfaces, force, *,
         else:
             data[name] = variable(t, values[:n, 0], units, long_name)
 
-    vector("Xg", 0.0 - stroke, "m", "motion imposed on the device: RB1 relative to RB3 (minus the stroke)")
     if response is None:
+        vector("Xg", 0.0 - stroke, "m", "imposed ground displacement X_g (RB1 relative to RB3: minus the stroke)")
         vector("stroke", stroke, "m", "stroke u: RB3 relative to RB1 (the superstructure's displacement relative to "
                                       "the ground)")
         vector("shear_ratio", force, "1", "device force over the supported weight F/W (quasi-static)")
@@ -373,6 +374,8 @@ def articulated_dataset(times, excitation, geometry, stroke, surfaces, force, *,
                                       "rotation of the hinge, the angle between the two halves" +
                                       (" (theta_1 - theta_3)" if not two else " (>= 0)"))
     if response is not None:
+        vector("Xg", np.reshape(excitation.displacement(np.asarray(times)[:n]), (n, -1)), "m",
+               "ground displacement X_g (the device undergoes minus the stroke)")
         data.update(structure_variables(response, stroke.shape[1], n))
         for j, plate in enumerate((1, 3)):
             vector(f"z_{plate}", surfaces.z[..., j], "1", f"friction state z_{plate} of surface {plate} (|z| <= 1; "

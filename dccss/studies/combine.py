@@ -9,7 +9,7 @@ from ..excitation import underlying
 from ..mechanics.geometry import PARAMETERS, Geometry
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
-from ..mechanics.structure import VERTICAL_SUMMARIES, G
+from ..mechanics.structure import SURFACE_SUMMARIES, VERTICAL_SUMMARIES, G
 from ..mechanics.summaries import model_specific, specs
 from ..results import global_attrs, variable
 from .spec import entry_files
@@ -80,7 +80,7 @@ def combine(study, chunks: dict) -> xr.Dataset:
         ds = ds.drop_vars([n for n in study.axes if n in ds])
         variables = {}
         summaries = specs()
-        for name in {**summaries, **STRUCTURE_SUMMARIES, **VERTICAL_SUMMARIES}:
+        for name in {**summaries, **STRUCTURE_SUMMARIES, **VERTICAL_SUMMARIES, **SURFACE_SUMMARIES}:
             if name in ds:
                 variables[name] = xr.Variable(dims, ds[name].values.reshape(grid.shape), ds[name].attrs)
             elif name in model_specific():
@@ -235,7 +235,7 @@ def statistics(ds) -> xr.Dataset:
         flag = name in ("failed", "capacity_exceeded") or name.startswith("record_") or name.endswith("_time")
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
-        counted = xr.ones_like(ok) if name in STRUCTURE_SUMMARIES or name in VERTICAL_SUMMARIES else ok
+        counted = xr.ones_like(ok) if name in {**STRUCTURE_SUMMARIES, **VERTICAL_SUMMARIES, **SURFACE_SUMMARIES} else ok
         size = name.endswith("_end")
         values = abs(var.where(counted)) if size else var.where(counted)
         logs = np.log(values.where(values > 0))

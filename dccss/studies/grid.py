@@ -11,6 +11,8 @@ from ..excitation import step_times
 from ..mechanics import structure
 from ..mechanics.geometry import PARAMETERS, Geometry
 
+#: sweep axes whose values are names, not numbers
+CATEGORICAL = ("record", "prototype", "component", "property", "slider")
 #: with ``symmetric: true`` the plate-3 and cap-23 parameters follow those of plate 1 and cap 21
 PLATE3_FOLLOWS = {"R3": "R1", "alpha3": "alpha1", "alpha23": "alpha21", "hr3": "hr1", "hmin3": "hmin1",
                   "tr3": "tr1"}
@@ -81,7 +83,7 @@ class Grid:
 
     def point(self, case) -> dict:
         """{axis: value} of one case (str for prototype names, float otherwise)."""
-        return {k: (str(v[0]) if k in ("record", "prototype", "component", "property") else float(v[0]))
+        return {k: (str(v[0]) if k in CATEGORICAL else float(v[0]))
                 for k, v in self.values(np.array([case])).items()}
 
     def geometry(self, cases) -> Geometry:
@@ -121,14 +123,29 @@ class Grid:
         if study.structure is None:
             return [None] * len(cases)
         return [replace(study.structure, **{k: float(values[k][i]) for k in ("friction", "damping") if k in values},
-                        **({"factor": study.bounds[str(values["property"][i])]} if "property" in values else {}))
+                        **({"factor": study.bounds[str(values["property"][i])]} if "property" in values else {}),
+                        **({"slider": str(values["slider"][i])} if "slider" in values else {}))
                 for i in range(len(cases))]
 
+    def compares_sliders(self) -> bool:
+        """Whether the study has an articulated slider (a slider axis, or the study's own): its summaries then
+        hold each surface's (``structure.SURFACE_SUMMARIES``), the rigid slider's in proportion."""
+        return "slider" in self.axes or (self.study.structure is not None and self.study.structure.slider != "rigid")
+
+    def sliders(self, cases) -> np.ndarray:
+        """The slider kind of each case (``rigid`` without a structure)."""
+        if "slider" in self.axes:
+            return np.asarray(self.values(cases)["slider"], dtype=str)
+        kind = self.study.structure.slider if self.study.structure is not None else "rigid"
+        return np.full(len(cases), kind)
+
     def pendulums(self, cases) -> list:
-        """What a structure needs of each case's device: its pendulum length L and radii R1, R3 (m)."""
+        """What a structure needs of each case's device: its pendulum length L, radii R1, R3 (m) and the rest of
+        its parameters (an articulated slider's halves: ``sliders.pendulums``)."""
         devices = self.geometry(cases)
-        L, R1, R3 = (np.broadcast_to(getattr(devices, k), (len(cases),)) for k in ("L", "R1", "R3"))
-        return [SimpleNamespace(L=float(L[i]), R1=float(R1[i]), R3=float(R3[i])) for i in range(len(cases))]
+        names = ("L", "R1", "R3", "h2", "alpha1", "alpha3", "alpha21", "alpha23")
+        values = {k: np.broadcast_to(getattr(devices, k), (len(cases),)) for k in names}
+        return [SimpleNamespace(**{k: float(v[i]) for k, v in values.items()}) for i in range(len(cases))]
 
     def times(self, dt, cases=None) -> np.ndarray:
         """The step times at step size dt (s) of the cases' excitation (the study's without ``cases``)."""

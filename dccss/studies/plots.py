@@ -66,6 +66,9 @@ SUMMARY_VARIABLES = [
     ("interpenetration_max", "max interpenetration (corners)", 1e3, "mm"),
     ("stroke_max_abs", "max |stroke u| of the structure", 100.0, "cm"),
     ("shear_ratio_max_abs", "max |F/W| of the device", 1.0, "-"),
+    ("stroke_1_max_abs", "max $|u_1|$ on the lower surface", 100.0, "cm"),
+    ("stroke_3_max_abs", "max $|u_3|$ on the upper surface", 100.0, "cm"),
+    ("hinge_rotation_max_abs", "max hinge rotation", 1.0, "°"),
 ]
 STROKE_COLOUR = "tab:purple"
 #: how the suite statistics over the records are drawn, and their legend
@@ -85,7 +88,7 @@ HISTORY_ROWS = [
 AXIS_SYMBOLS = {"record": "record", "amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$",
                 "theta2_0": "$θ^2(t_0)$", "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$",
                 "rotation": "rotation of the pair", "component": "component of $X_g$", "friction": "friction μ",
-                "damping": "damping ζ"}
+                "damping": "damping ζ", "slider": "slider"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
@@ -405,6 +408,13 @@ def _history_values(ds, name):
     """A history row's values in SI units; "interpenetration" is the largest |I| of the corners A..D
     (of the rim points of each step's section, bidirectional); θ² of a bidirectional history is its
     tilt."""
+    if ds.attrs.get("model") == "articulated":  # its halves: the lower one's rotation, RB3's rise, no interpenetration
+        two = _bidirectional(ds)
+        theta = [np.radians(ds[f"tilt_{j}" if two else f"theta_{j}"].values) for j in (1, 3)]
+        lengths = (ds.attrs["pendulum_length_1_m"], ds.attrs["pendulum_length_3_m"])
+        return {"theta2": np.degrees(theta[0]), "Xg": ds[name].values if name in ds else np.nan,
+                "rise": sum(L * (1.0 - np.cos(th)) for L, th in zip(lengths, theta)),
+                "interpenetration": np.full(ds.sizes["t"], np.nan)}[name]
     if name == "interpenetration":
         names = [v for v in ds.data_vars if v.startswith("I_") and not v.endswith("_stick")]
         return np.max(np.abs([ds[v].values for v in names]), axis=0)
@@ -442,6 +452,12 @@ def _events(ds):
 def _notes(ds, model):
     """The events of a history in one line (empty if none), for the column title."""
     parts = []
+    if ds.attrs.get("model") == "articulated":
+        parts.append(f"articulated: θ² is the lower half's, hinge up to "
+                     f"{float(np.max(np.abs(ds['hinge_rotation'].values))):.2f}°")
+        for j in (1, 3):
+            if f"ring_{j}_reached_at_s" in ds.attrs:
+                parts.append(f"surface {j}'s ring reached at {float(ds.attrs[f'ring_{j}_reached_at_s']):.4g} s")
     if "capacity_exceeded_at_s" in ds.attrs:
         reached = float(ds.attrs["capacity_exceeded_at_s"])
         text = f"{ds.attrs.get('capacity_exceeded_plate', 'a')} ring reached at {reached:.4g} s"

@@ -19,14 +19,36 @@ from .grid import PLATE3_FOLLOWS
 from .spec import entry_excitation
 
 
-def structure_summaries(responses) -> dict:
+def structure_summaries(responses, devices=None, hinge=0.0) -> dict:
     """The structure's summaries of each case (``structure.SUMMARIES``; {} without a structure): its
     response to the whole record, the demand on the device, whatever became of the pad (it does not
-    depend on it: a case whose pad reached a ring, stopped there or failed keeps them)."""
+    depend on it: a case whose pad reached a ring, stopped there or failed keeps them); with ``devices``
+    (a study comparing slider kinds) each surface's too (``structure.SURFACE_SUMMARIES``)."""
     out = {name: np.full(len(responses), np.nan) for name in STRUCTURE_SUMMARIES} if responses else {}
     for i, response in enumerate(responses):
-        for name, value in structure.summarize(response).items():
+        found = structure.summarize(response)
+        if devices is not None:
+            found.update(structure.surface_summaries(response, devices[i], hinge))
+        for name, value in found.items():
             out.setdefault(name, np.full(len(responses), np.nan))[i] = value
+    return out
+
+
+def articulated_summaries(names, responses, dtypes) -> dict:
+    """The pad's summaries of articulated sliders' cases: the paper's pad models are the rigid slider's, so
+    NaN (a failure flag 0), but a ring reached by either surface's half (its first time) is the capacity's."""
+    out = {}
+    for name in names:
+        if name == "capacity_exceeded":
+            out[name] = np.array([any(np.isfinite(when) for when, _ in r.surfaces.ring) for r in responses],
+                                 dtype=dtypes.get(name, np.int8))
+        elif name == "capacity_time":
+            out[name] = np.array([min((w for w, _ in r.surfaces.ring if np.isfinite(w)), default=np.nan)
+                                  for r in responses])
+        elif name == "failed":
+            out[name] = np.zeros(len(responses), dtype=dtypes.get(name, np.int8))
+        else:
+            out[name] = np.full(len(responses), np.nan)
     return out
 
 
@@ -67,19 +89,41 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         times = grid.times(dt, group)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
         ground, responses = grid.imposed(group, times)
-        try:
-            part = runs.summaries(model, grid.geometry(group), ground, grid.theta2_0_of(group),
-                                  azimuth=grid.azimuth_of(group), normals=study.normals, options=study.options,
-                                  times=times, capacity=study.capacity, progress=report)
-        except (ConvergenceError, CapacityError) as err:
-            index = getattr(err, "index", None)
-            where = grid.point(group[index[0]]) if index else f"of chunk {k}"
-            raise type(err)(f"sweep point {where} ({model}): {err}") from None
-        own = structure_summaries(responses)
+        # the pad's models run on the rigid sliders' cases; an articulated slider's halves have their own kinematics
+        rigid = grid.sliders(group) == "rigid"
+        part = {}
+        if rigid.any():
+            cases_rigid = group[rigid]
+            try:
+                part = runs.summaries(model, grid.geometry(cases_rigid), ground[:, rigid],
+                                      grid.theta2_0_of(cases_rigid),
+                                      azimuth=grid.azimuth_of(cases_rigid), normals=study.normals,
+                                      options=study.options, times=times, capacity=study.capacity, progress=report)
+            except (ConvergenceError, CapacityError) as err:
+                index = getattr(err, "index", None)
+                where = grid.point(cases_rigid[index[0]]) if index else f"of chunk {k}"
+                raise type(err)(f"sweep point {where} ({model}): {err}") from None
+        if not rigid.all():
+            names = list(part) or [*specs(), *(TILT_SUMMARIES if study.excitation.components == 2 else {})]
+            dtypes = {name: np.asarray(v).dtype for name, v in part.items()}
+            others = articulated_summaries(names, [r for r, keep in zip(responses, rigid) if not keep], dtypes)
+            merged = {}
+            for name in names:
+                values = np.zeros(len(group), dtype=np.asarray(part[name]).dtype if part else others[name].dtype)
+                if part:
+                    values[rigid] = part[name]
+                values[~rigid] = others[name]
+                merged[name] = values
+            part = merged
+            if progress is not None and not rigid.any():
+                report(len(times) - 1, len(times) - 1)
+        compared = grid.compares_sliders()
+        own = structure_summaries(responses, grid.pendulums(group) if compared else None,
+                                  study.structure.hinge if compared else 0.0)
         part = _lifted_off(part, responses, study, model, [grid.point(c) for c in group])
         for name, values in {**part, **own}.items():
             out.setdefault(name, np.zeros(len(cases), np.asarray(values).dtype))[mine] = values
-    names = {**specs(), **STRUCTURE_SUMMARIES, **structure.VERTICAL_SUMMARIES,
+    names = {**specs(), **STRUCTURE_SUMMARIES, **structure.VERTICAL_SUMMARIES, **structure.SURFACE_SUMMARIES,
              **(TILT_SUMMARIES if study.excitation.components == 2 else {})}
     data = {name: variable(("case",), v, *names[name]) for name, v in out.items()}
     for flag in ("capacity_exceeded", "failed"):
@@ -123,6 +167,10 @@ def history_mapping(study, i, model) -> dict:
         mapping["structure"] = {"friction": float(point["friction"]) if "friction" in point else s.friction,
                                 "damping": float(point.get("damping", s.damping)), "friction_on": s.friction_on,
                                 **({"property": factor} if factor != 1.0 else {})}
+        kind = point.get("slider", s.slider)
+        if kind != "rigid":  # an articulated slider's halves stay seated: its history is the same under every model
+            mapping["slider"] = {"kind": kind, "hinge": s.hinge}
+            mapping["model"] = "compliant"
     return mapping
 
 

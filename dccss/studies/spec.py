@@ -11,7 +11,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import excitation_from, geometry_from, newton_from, range_scaling, spectral_scaling, structure_from
+from ..case import (
+    excitation_from,
+    geometry_from,
+    newton_from,
+    range_scaling,
+    slider_from,
+    spectral_scaling,
+    structure_from,
+)
 from ..checks import CaseError, Problems, check_keys, choice, number
 from ..excitation import COMPONENTS, Component, Oriented, check_step, underlying
 from ..mechanics import registry
@@ -19,24 +27,23 @@ from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
 from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
-from ..mechanics.structure import Structure, StructureError
+from ..mechanics.structure import SLIDERS, Structure, StructureError
 from ..paper.prototypes import TABLE1
 from ..schema import errors as schema_errors
 from ..schema import schema
 from ..spectra import suite_factors
-from .grid import PLATE3_FOLLOWS, Grid
+from .grid import CATEGORICAL, PLATE3_FOLLOWS, Grid
 
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
 #: (degrees) turns a one-component excitation into bidirectional motion along it, ``component``
 #: (x, y or both) keeps one or both components of a two-component one
 EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "rotation", "component")
-#: the isolated structure's parameters (``structure``; sweeping one gives a study a structure)
-STRUCTURE_AXES = ("friction", "damping", "property")
+#: the isolated structure's parameters (``structure``; sweeping one gives a study a structure); ``slider`` the
+#: device's construction (rigid, articulated: a structure's)
+STRUCTURE_AXES = ("friction", "damping", "property", "slider")
 #: the friction's bounds a ``property`` axis takes (``structure.property`` gives lower's and upper's factors)
 BOUNDS = ("lower", "nominal", "upper")
 AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
-#: sweep axes whose values are names, not numbers
-CATEGORICAL = ("record", "prototype", "component", "property")
 #: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
 #: checks a study against as well
 KEYS = set(schema("study")["properties"])
@@ -276,7 +283,9 @@ class Study:
             dt = problems.check("dt", _steps, config, axes, excitation)
         else:
             dt = problems.check("dt", number, config["dt"], "dt", positive=True) if "dt" in config else None
-        structure = problems.check("structure", _structure, config.get("structure"), axes) if axes is not None else None
+        slider = problems.check("slider", slider_from, given["slider"])
+        structure = (problems.check("structure", _structure, config.get("structure"), axes, slider)
+                     if axes is not None and slider is not None else None)
         bounds = problems.check("structure", _bounds, config.get("structure"), axes) if axes is not None else None
         options = problems.check("newton", newton_from, config.get("newton"))
         policy = problems.check("on_failure", choice, given["on_failure"], "on_failure", FAILURE_POLICIES)
@@ -439,8 +448,8 @@ def _axis_values(key, spec, known, symmetric):
                          f"sweep {PLATE3_FOLLOWS[key]} instead")
     if key == "record":
         return None  # read with the excitation (``record_entries``)
-    if key in ("component", "property"):  # labels of a fixed set
-        allowed = COMPONENTS if key == "component" else BOUNDS
+    if key in ("component", "property", "slider"):  # labels of a fixed set
+        allowed = {"component": COMPONENTS, "property": BOUNDS, "slider": tuple(SLIDERS)}[key]
         if not isinstance(spec, list) or not spec:
             raise StudyError(f"sweep.{key}: expected a non-empty list of {list(allowed)}, got {spec!r}")
         for i, label in enumerate(spec):
@@ -502,14 +511,20 @@ def _steps(config, axes, excitation) -> float | None:
     return step(config["dt"], "dt") if "dt" in config else None
 
 
-def _structure(value, axes) -> Structure | None:
+def _structure(value, axes, slider=("rigid", 0.0)) -> Structure | None:
     """The study's base structure: its ``structure`` key, or one made by sweeping friction (with damping
-    0 unless given); every swept value checked."""
+    0 unless given), on the study's ``slider`` (kind, hinge); every swept value checked; each slider a
+    ``slider`` axis takes too."""
     swept = [k for k in ("friction", "damping") if k in axes]
+    kinds = list(axes.get("slider", [])) or [slider[0]]
     if value is None and not swept:
         if "property" in axes:
             raise StudyError("sweep.property: the friction's bounds are a structure's: give structure (its friction "
                              "and property: {lower: ..., upper: ...})")
+        if "articulated" in kinds:
+            raise StudyError(f"{'sweep.slider' if 'slider' in axes else 'slider'}: an articulated slider in a study is "
+                             f"driven by its structure: give structure (its friction on each surface, friction_on: "
+                             f"surfaces)")
         return None
     if value is None:
         value = {}
@@ -522,11 +537,17 @@ def _structure(value, axes) -> Structure | None:
                              "(sweep.friction)")
         value = {**value, "friction": float(axes["friction"][0])}
         try:
-            base = structure_from(value)
+            base = structure_from(value, "structure", *slider)
         except CaseError as err:  # the value taken from the sweep is named there
             raise StudyError(str(err).replace("structure.friction", "sweep.friction[0]", 1)) from None
     else:
-        base = structure_from(value)
+        base = structure_from(value, "structure", *slider)
+    for i, kind in enumerate(kinds):  # each slider of the axis on this structure
+        try:
+            replace(base, slider=kind)
+        except StructureError as err:
+            where = f"sweep.slider[{i}] ({kind}) on " if "slider" in axes else ""
+            raise StudyError(*(where + m for m in err.messages)) from None
     for key in swept:
         for i, v in enumerate(axes[key]):
             try:

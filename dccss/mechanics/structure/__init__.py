@@ -70,11 +70,22 @@ from . import articulated  # noqa: F401  (registers the articulated slider)
 from .circular import INTERVAL_WORK, plane_history
 from .exact import LINE_WORK, line_history
 from .inputs import FRICTION_ON, G, Ground, Structure, StructureError, period
-from .response import SUMMARIES, VERTICAL_SUMMARIES, Response, Surfaces, respond, solve, summarize
+from .response import (
+    SUMMARIES,
+    SURFACE_SUMMARIES,
+    VERTICAL_SUMMARIES,
+    Response,
+    Surfaces,
+    respond,
+    solve,
+    summarize,
+    surface_summaries,
+)
 from .sliders import SLIDERS
 
 __all__ = ["FRICTION_ON", "G", "Ground", "INTERVAL_WORK", "LINE_WORK", "Response", "SLIDERS", "SUMMARIES", "Structure",
-           "StructureError", "Surfaces", "VERTICAL_SUMMARIES", "period", "respond", "solve", "summarize", "warm"]
+           "StructureError", "SURFACE_SUMMARIES", "Surfaces", "VERTICAL_SUMMARIES", "period", "respond", "solve",
+           "summarize", "surface_summaries", "warm"]
 
 
 def warm(kernels=("plane", "line", "articulated", "series")):

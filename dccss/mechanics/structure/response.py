@@ -11,7 +11,7 @@ import numpy as np
 from .circular import plane_history
 from .exact import line_history
 from .inputs import G, Ground, Structure
-from .sliders import SLIDERS, SliderKind, register
+from .sliders import SLIDERS, SliderKind, pendulums, register, ring_strokes
 
 
 class Response(NamedTuple):
@@ -72,6 +72,35 @@ VERTICAL_SUMMARIES = {
     "uplift_duration": ("s", "how long the superstructure lifts off its device (N/W <= 0) in all"),
     "uplift_count": ("1", "how many times the superstructure lifts off its device (N/W <= 0)"),
 }
+
+
+#: each sliding surface's summaries, where a study compares slider kinds (``surface_summaries``)
+SURFACE_SUMMARIES = {
+    "stroke_1_max_abs": ("m", "largest |u_1|, the displacement on the lower surface (RB1): the hinge relative to C1 "
+                              "(the rigid slider's L_1 / L of the stroke: its surfaces slide in proportion)"),
+    "stroke_3_max_abs": ("m", "largest |u_3|, the displacement on the upper surface (RB3): C3 relative to the hinge "
+                              "(the rigid slider's L_3 / L of the stroke)"),
+    "ring_1_reached": ("1", "the half on the lower surface reaches the ring of RB1, |u_1| >= L_1 sin(alpha1 - "
+                            "alpha21) (1), or not (0)"),
+    "ring_3_reached": ("1", "the half on the upper surface reaches the ring of RB3, |u_3| >= L_3 sin(alpha3 - "
+                            "alpha23) (1), or not (0)"),
+    "hinge_rotation_max_abs": ("degree", "largest rotation of the hinge, the angle between the two halves (0 for "
+                                         "the rigid slider)"),
+}
+
+
+def surface_summaries(response: Response, geometry, hinge=0.0) -> dict:
+    """The :data:`SURFACE_SUMMARIES` of a response on ``geometry``: an articulated slider's from its own surfaces,
+    the rigid slider's from its stroke, the surfaces sliding in proportion (u_j = L_j u / L, no hinge rotation)."""
+    L1, L3 = pendulums(geometry, hinge)
+    rings = ring_strokes(geometry, hinge)
+    if response.surfaces is None:
+        peaks, turn = (L1 / (L1 + L3) * response.peaks[0], L3 / (L1 + L3) * response.peaks[0]), 0.0
+    else:
+        peaks, turn = response.surfaces.peaks, float(np.degrees(response.surfaces.hinge_peak))
+    return {"stroke_1_max_abs": float(peaks[0]), "stroke_3_max_abs": float(peaks[1]),
+            "ring_1_reached": float(peaks[0] >= rings[0]), "ring_3_reached": float(peaks[1] >= rings[1]),
+            "hinge_rotation_max_abs": turn}
 
 
 def summarize(response: Response) -> dict:
