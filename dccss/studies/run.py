@@ -109,7 +109,8 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
             others = articulated_summaries(names, [r for r, keep in zip(responses, rigid) if not keep], dtypes)
             merged = {}
             for name in names:
-                values = np.zeros(len(group), dtype=np.asarray(part[name]).dtype if part else others[name].dtype)
+                kinds = (np.asarray(part[name]).dtype, others[name].dtype) if part else (others[name].dtype,)
+                values = np.zeros(len(group), dtype=np.result_type(*kinds))  # an iteration count beside NaN: float
                 if part:
                     values[rigid] = part[name]
                 values[~rigid] = others[name]
