@@ -12,7 +12,7 @@ import pytest
 
 from dccss.mechanics.friction import COULOMB, LAWS, row, surface_mu, surface_mu_slopes
 from dccss.mechanics.structure import G, Ground, Structure, StructureError, corner, respond
-from dccss.mechanics.structure.articulated import articulated_history
+from dccss.mechanics.structure.articulated import articulated_history, surfaces_alike
 from dccss.mechanics.structure.series import BOTH, SLIDE1, SLIDE3, STUCK, series_line_history
 from dccss.mechanics.structure.sliders import pendulums, ring_strokes
 from dccss.paper.prototypes import DFP1
@@ -192,14 +192,41 @@ def test_one_component_surfaces_yielding_together_is_the_rigid_slider():
 
 @pytest.mark.parametrize("law", [0.045, {"law": "velocity", "slow": 0.03, "fast": 0.06, "rate": 20.0}])
 def test_two_components_surfaces_yielding_together_is_the_rigid_slider(law):
-    """The same in two components (DOP853 against Radau for both surfaces sliding, the both-start), Coulomb
-    and a speed law (DFP1's halves are alike: both surfaces slide at the same speed), to 1e-9 m."""
+    """The same in two components, Coulomb and a speed law (DFP1's halves are alike: both surfaces slide at
+    the same speed), to 1e-9 m: surfaces alike slide as the rigid slider (``surfaces_alike``)."""
     pair = _pair()
     ground = pair.ground_acceleration()
     a = respond(ground, pair.time, DFP1, _articulated([law, law]))
     b = respond(ground, pair.time, DFP1, Structure([law, law], 0.02, "surfaces"))
     assert np.max(np.abs(a.stroke - b.stroke)) < 1e-9
     assert a.surfaces.hinge_peak < 1e-8
+
+
+def test_surfaces_nearly_alike_take_the_corner_equations_and_meet_the_rigid_slider():
+    """μ_3 = μ_1 (1 + 1e-7): not alike, so both sliding goes through the corner equations (Radau); the hinge
+    turns, by little, and the stroke stays within 1e-8 m of the rigid slider's (Radau's tolerance, relative
+    1e-6 of a 0.16 m stroke, leaves a few nanometres; the hinge's turn, about 1e-8 m more)."""
+    pair = _pair()
+    ground = pair.ground_acceleration()
+    friction = [0.045, 0.045 * (1.0 + 1e-7)]
+    assert not surfaces_alike(Structure(friction, 0.02, "surfaces").rows(DFP1, proportional=False), L1, L3)
+    a = respond(ground, pair.time, DFP1, _articulated(friction))
+    b = respond(ground, pair.time, DFP1, Structure(friction, 0.02, "surfaces"))
+    assert np.max(np.abs(a.stroke - b.stroke)) < 1e-8
+    assert 1e-10 < a.surfaces.hinge_peak < 1e-6
+
+
+def test_which_surfaces_are_alike():
+    """Alike: equal μ̄ under Coulomb (μ_3 = μ_1 R^1 L_3 / (L_1 R^3), to 1e-12), or the same law, values and
+    halves; not: unequal frictions, another law, another rate, or a hinge off the pad's centre under a law."""
+    law = {"law": "velocity", "slow": 0.03, "fast": 0.06, "rate": 20.0}
+
+    def alike(friction, hinge=0.0):
+        s = _articulated(friction, hinge=hinge)
+        return surfaces_alike(s.rows(DFP1, proportional=False), *s.pendulums(DFP1))
+    assert alike([0.045, _together(0.045)]) and alike([law, law]) and alike([0.03, 0.03], hinge=0.0)
+    assert not alike([0.03, 0.06]) and not alike([law, 0.045]) and not alike([law, {**law, "rate": 21.0}])
+    assert not alike([law, law], hinge=0.05) and not alike([0.03, 0.03], hinge=0.05)
 
 
 def test_the_general_history_equals_the_exact_one_in_one_component():

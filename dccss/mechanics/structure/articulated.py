@@ -14,7 +14,8 @@ phases are those of the exact one-component solution:
   surface's circle (YIELD: both slide);
 * **both slide**: ``corner`` (Radau IIA on the state (u, u̇, δ, σ)), until |u̇| falls to REST_SPEED or
   one surface stops (σ reaches 0 or 1). Both surfaces starting from rest together (a tie) start as the
-  rigid slider of their proportional split until |u̇| reaches START_SPEED.
+  rigid slider of their proportional split until |u̇| reaches START_SPEED; surfaces alike (their μ̄ equal
+  wherever they slide in proportion: ``surfaces_alike``) slide as the rigid slider throughout, exactly.
 
 Under a temperature law each surface's plate heats by its own flux, from its own slider's travel
 (``heat.plate_temperature``), at the record's samples. Written in the scalar subset Numba compiles: the
@@ -28,7 +29,7 @@ import math
 import numpy as np
 
 from .. import scalar
-from ..friction import FACTOR, MU, WEIGHT, device_mu, surface_mu
+from ..friction import FACTOR, KIND, MU, RATIO, WEIGHT, device_mu, surface_mu
 from . import corner
 from .circular import breakaway
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
@@ -42,11 +43,11 @@ from .sliders import SliderKind, register, ring_strokes
 #: both surfaces start together where the other's force is within this (relative) of its friction
 TOGETHER = 1e-9
 #: Radau's tolerances for both surfaces sliding (relative; absolute, in m, m/s and rad)
-RADAU_RTOL, RADAU_ATOL = 1e-7, 1e-9
+RADAU_RTOL, RADAU_ATOL = 1e-6, 1e-8
 #: Radau's step bounds: the shortest (s) before the phase fails, the first one tried
 RADAU_MIN, RADAU_FIRST = 1e-12, 1e-4
 #: Newton's contraction below which the next step keeps the Jacobian
-THETA = 0.001
+THETA = 0.1
 
 
 @scalar.jit
@@ -114,13 +115,14 @@ def _corner(wx, wy, ex, ey, m1, m3, L1, L3):
     return (SLIDE1 if best_sigma > 1.0 else SLIDE3), best_delta, best_sigma
 
 
-def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp, rtol, atol, A, B, C, E3, E5,
-                K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, v1, phase, force, mu, heat, temperature):
+def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, g, damp, rtol, atol, A, B, C, E3,
+                E5, K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, v1, phase, force, mu, heat, temperature):
     """The articulated slider's history at the interval ends (the module docstring) into u, u̇, u_1 (n, 2),
     the phase (n), F/W (n, 2), each surface's coefficient μ_j (n, 2; λ included, at its sliding speed)
     and temperature (n, 2); ``rows`` the surfaces' laws (weight and ratio R^j / L_j), ``rigid_rows`` the
-    same laws as the rigid slider's (R^j / L: both surfaces starting together), N/W on interval k
-    n0[k] + n1[k] (t - t_k): (DONE, 0), or (CHATTER or FAILED, the interval)."""
+    same laws as the rigid slider's (R^j / L: both surfaces starting together, and sliding together
+    throughout where ``alike``: ``surfaces_alike``), N/W on interval k n0[k] + n1[k] (t - t_k): (DONE, 0), or
+    (CHATTER or FAILED, the interval)."""
     n = time.size
     L = L1 + L3
     hold = 1.0 + rtol
@@ -235,23 +237,35 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, samples, L1, L3, g, damp
                 state, starting, h_radau = BOTH, False, 0.0
                 continue
             # both slide
-            if starting:
-                # from rest together: the rigid slider of the proportional split until |u̇| reaches START_SPEED
+            if starting or alike:
+                # from rest together, or alike throughout: the rigid slider of the proportional split (from rest
+                # until |u̇| reaches START_SPEED)
                 y4[0], y4[1], y4[2], y4[3] = x0, x1, w0, w1
                 load = (b00, b01, b10, b11, g / L, damp, g, m0, m1, t1, t3, 0.0, 0.0, 0.0)
-                ended, when, _ = integrate(y4, end, 0.0, load, rigid_rows, True, False, rtol, atol, A, B, C, E3, E5,
-                                           K, out, trial, rigid_rows[:0])
+                ended, when, h_next = integrate(y4, end, 0.0 if starting else h_next, load, rigid_rows, starting,
+                                                not starting, rtol, atol, A, B, C, E3, E5, K, out, trial,
+                                                rigid_rows[:0])
                 if ended == TOO_SHORT:
                     return FAILED, k
                 dx, dy = y4[0] - x0, y4[1] - x1
                 q0, q1 = q0 + L1 / L * dx, q1 + L1 / L * dy
                 x0, x1, w0, w1 = y4[0], y4[1], y4[2], y4[3]
+                delta, sigma = 0.0, L1 / L
                 tau += when
                 if ended == NONE:
                     tau = h
                     continue
                 if ended == HELD:
                     w0, w1, state, starting = 0.0, 0.0, STUCK, False
+                    continue
+                if ended == STOP:
+                    w0, w1 = 0.0, 0.0
+                    state = _at_rest(b00 + b10 * when, b01 + b11 * when, max(m0 + m1 * when, 0.0), x0, x1, q0, q1,
+                                     L1, L3, g, rows, t1, t3, hold)
+                    starting, h_next = state != STUCK, 0.0
+                    continue
+                if alike:
+                    starting = False
                     continue
                 # moving: both surfaces' corner, or one surface only
                 speed = math.sqrt(w0 * w0 + w1 * w1)
@@ -320,16 +334,24 @@ def _at_rest(bx, by, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold):
 def _both(y, y0, end, h, p, rows, k0, work, Z):
     """Radau over [0, end] from y (overwritten): (what ended it: NONE, STOP, YIELD (σ reached 0 or 1) or
     TOO_SHORT, when, the next step). The Jacobian is kept from step to step while Newton converges fast
-    (θ <= THETA)."""
+    (θ <= THETA); each step's Newton starts from the last step's collocation polynomial, extrapolated: across
+    a sample interval's end too, where the phase goes on (``work``'s memo says so: a new phase (h <= 0)
+    starts afresh)."""
     t = 0.0
     F, Mb = work[0], work[1]
+    last, previous, memo = work[14], work[15], work[16]  # the last accepted step: start, stages, (length, goes on)
     if h <= 0.0:
         h = min(RADAU_FIRST, end)
-    corner.system(t, y, p, rows, F, Mb)
-    for i in range(4):
-        k0[i] = F[i]
-    k0[4], k0[5] = 0.0, 0.0
-    first, refresh = True, 2
+        memo[1], memo[3] = 0.0, 1.0
+    goes_on = memo[1] != 0.0
+    if not goes_on:
+        corner.system(t, y, p, rows, F, Mb)
+        for i in range(4):
+            k0[i] = F[i]
+        k0[4], k0[5] = 0.0, 0.0
+    # RADAU5's second error estimate (filtering the stiff components) on the interval's first step, where
+    # the ground's jerk jumps (σ's fast relaxation takes up the change), and after a rejected step
+    first, refresh, guessed, span = True, 1 if goes_on else 2, goes_on, memo[0]  # factors afresh
     current = False  # whether the Jacobian is the one at the step's start
     while t < end:
         taken = min(h, end - t)
@@ -337,21 +359,24 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             return TOO_SHORT, t, h
         for i in range(corner.N):
             y0[i] = y[i]
+        if guessed:  # the last polynomial at this step's stages, from y0
+            for i in range(corner.S):
+                l1, l2, l3 = corner.weights(1.0 + corner.C[i] * taken / span)
+                for j in range(corner.N):
+                    Z[i * corner.N + j] = (last[j] + l1 * previous[j] + l2 * previous[corner.N + j]
+                                           + l3 * previous[2 * corner.N + j] - y0[j])
         status, error, iterations, theta = corner.radau_step(t, y0, taken, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
-                                                             first, refresh, Z, work)
+                                                             first, refresh, Z, work, guessed)
         current = current or refresh == 2
         if status != 0:
-            h, refresh = 0.5 * taken, (1 if current else 2)
+            h, refresh, guessed = 0.5 * taken, (1 if current else 2), False
             continue
         factor = 0.9 * (1.0 + 2.0 * corner.NEWTON) / (iterations + 2.0 * corner.NEWTON)
         quotient = max(1.0 / 8.0, min(5.0, error ** 0.25 / factor))
-        if error > 1.0:
-            h, refresh, first = taken / quotient, (1 if current else 2), False
-            continue
-        first = False
-        # the events within the step: a stop (|u̇| down to REST_SPEED: on the collocation polynomial, whose
-        # u̇ may pass through zero between the step's ends, as it does along a line), or a surface stopping
-        # (σ out of [0, 1] at the step's end)
+        # the events within the step, looked for before its error is judged (across a stop the friction turns
+        # about: the step over it is inaccurate, and would be cut down to nothing): a stop (|u̇| down to
+        # REST_SPEED on the collocation polynomial, whose u̇ may pass through zero between the step's ends, as
+        # it does along a line), or a surface stopping (σ out of [0, 1] at the step's end)
         sig = y0[5] + Z[17]
         event = NONE
         slowest, bound = _slowest(y0, Z)
@@ -359,64 +384,138 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             event = STOP
         elif sig <= 0.0 or sig >= 1.0:
             event = YIELD
-        if event == NONE:
-            for i in range(corner.N):
-                y[i] = y0[i] + Z[2 * corner.N + i]
-                acc = 0.0
-                for j in range(corner.S):
-                    acc += corner.W[2, j] * Z[j * corner.N + i]
-                k0[i] = acc / taken
-            t += taken
-            current = False
-            h, refresh = taken / quotient, (1 if theta <= THETA else 2)
+        if event != NONE:
+            reached, length, error = _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z)
+            if reached:
+                memo[1] = 0.0
+                return event, t + length, h
+            # the step to it is too long for the tolerance: a shorter one, then look again
+            quotient = max(1.0 / 8.0, min(5.0, error ** 0.25 / factor))
+            h, refresh, first, guessed = length / quotient, (1 if current else 2), True, False
             continue
-        # locate it on the collocation polynomial (a stop before the slowest point), then step there
-        lo, hi = 0.0, bound if event == STOP else 1.0
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
-            s = corner.dense(y0, Z, mid, 5)
-            past = (math.sqrt(vx * vx + vy * vy) <= REST_SPEED) if event == STOP else (s <= 0.0 or s >= 1.0)
-            if past:
-                hi = mid
-            else:
-                lo = mid
-        length = hi * taken
-        vx, vy = corner.dense(y0, Z, lo, 2), corner.dense(y0, Z, lo, 3)  # just before the event
-        for i in range(corner.N):  # the polynomial's state there, kept where the step to it fails
-            y[i] = corner.dense(y0, Z, hi, i)
-        if length > RADAU_MIN:
-            status, error, iterations, theta = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
-                                                                 False, 1, Z, work)
-            if status == 0:
-                for i in range(corner.N):
-                    y[i] = y0[i] + Z[2 * corner.N + i]
-        if event == YIELD:
-            y[5] = 1.0 if y[5] >= 0.5 else 0.0
-        else:  # at rest: u̇ along its direction just before (the step to the stop may end just past zero)
-            size = math.sqrt(vx * vx + vy * vy)
-            y[2], y[3] = 0.5 * REST_SPEED * vx / size, 0.5 * REST_SPEED * vy / size
-        return event, t + length, h
+        if error > 1.0:
+            h, refresh, first, guessed = taken / quotient, (1 if current else 2), True, False
+            continue
+        if guessed:  # Gustafsson's predictive control (RADAU5's), from the last accepted step
+            quotient = max(quotient, max(1.0 / 8.0, min(5.0, span / taken * (error * error / memo[2]) ** 0.25 / 0.9)))
+        memo[2] = max(1e-2, error)
+        memo[3] = max(memo[3], 2.220446049250313e-16) ** 0.8
+        first = False
+        for i in range(corner.N):
+            y[i] = y0[i] + Z[2 * corner.N + i]
+            last[i] = y0[i]
+            acc = 0.0
+            for j in range(corner.S):
+                acc += corner.W[2, j] * Z[j * corner.N + i]
+                previous[j * corner.N + i] = Z[j * corner.N + i]
+            k0[i] = acc / taken
+        t += taken
+        current, guessed, span = False, True, taken
+        h, refresh = taken / quotient, (1 if theta <= THETA else 2)
+        memo[0], memo[1] = span, 1.0 if refresh < 2 else 0.0  # a new Jacobian next: start the next phase afresh
     return NONE, end, h
 
 
 @scalar.jit
+def _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z):
+    """The step from (t, y0) to the event (STOP or YIELD) that the trial step of length ``taken`` (its stages
+    Z) shows: located on its collocation polynomial (a stop before its slowest point, ``bound``), then the
+    step there, its length corrected by Newton on the step's end (inside the step the polynomial is of a
+    lower order than at its end: at a fast reversal the stop would be off by a little time). (reached, its
+    length, its error): reached where the event holds at the step's end (|u̇| along the way it went within
+    REST_SPEED of zero; σ within 1e-12 of 0 or 1) and the step meets the tolerance; y the state there (at
+    rest: u̇ a half REST_SPEED along the way it went; σ set to 0 or 1), else y0."""
+    lo, hi = 0.0, bound if event == STOP else 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
+        s = corner.dense(y0, Z, mid, 5)
+        past = (math.sqrt(vx * vx + vy * vy) <= REST_SPEED) if event == STOP else (s <= 0.0 or s >= 1.0)
+        if past:
+            hi = mid
+        else:
+            lo = mid
+    vx, vy = corner.dense(y0, Z, lo, 2), corner.dense(y0, Z, lo, 3)  # just before the event
+    size = math.sqrt(vx * vx + vy * vy)
+    dx, dy = vx / size, vy / size
+    target = 0.0 if corner.dense(y0, Z, hi, 5) <= 0.5 else 1.0
+    length = hi * taken
+    reached, error = False, 0.0
+    if length <= RADAU_MIN:  # at the step's start
+        for i in range(corner.N):
+            y[i] = corner.dense(y0, Z, hi, i)
+        return True, 0.0, 0.0
+    # Newton on the length, kept within a bracket [before, beyond] of the event (bisection where it leaves it)
+    before, beyond = 0.0, taken
+    for _ in range(40):
+        status, error, iterations, theta = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
+                                                             True, 1, Z, work)
+        if status != 0:
+            error = 2.0 ** 4
+            break
+        for i in range(corner.N):
+            y[i] = y0[i] + Z[2 * corner.N + i]
+        if error > 1.0:
+            break
+        if event == STOP:
+            j, miss = 2, y[2] * dx + y[3] * dy
+        else:
+            j, miss = 5, y[5] - target
+        rate = (corner.W[2, 0] * Z[j] + corner.W[2, 1] * Z[corner.N + j] + corner.W[2, 2] * Z[2 * corner.N + j])
+        if event == STOP:
+            rate = (rate * dx + dy * (corner.W[2, 0] * Z[3] + corner.W[2, 1] * Z[corner.N + 3]
+                                      + corner.W[2, 2] * Z[2 * corner.N + 3]))
+        rate /= length
+        if abs(miss) <= (REST_SPEED if event == STOP else 1e-12):
+            reached = True
+            break
+        short = miss > 0.0 if event == STOP else (miss > 0.0) == (target == 0.0)  # not yet there
+        if short:
+            before = length
+        else:
+            beyond = length
+        if beyond - before <= 1e-15 * taken + RADAU_MIN:
+            reached = True  # (a stop where u̇ jumps through zero: the bracket's end)
+            break
+        following = length - miss / rate if rate != 0.0 else 0.5 * (before + beyond)
+        length = following if before < following < beyond else 0.5 * (before + beyond)
+    else:
+        reached = True  # (not found closer in 40 steps: the last)
+    if not reached:  # the step's start kept
+        for i in range(corner.N):
+            y[i] = y0[i]
+    elif event == YIELD:
+        y[5] = target
+    else:
+        y[2], y[3] = 0.5 * REST_SPEED * dx, 0.5 * REST_SPEED * dy
+    return reached, length, error
+
+
+@scalar.jit
 def _slowest(y0, Z):
-    """The smallest |u̇| over the step on its collocation polynomial and where (the fraction of the step): the
-    least of 16 points, refined by a golden-section search around it."""
-    best, at = 1e300, 0.0
+    """The smallest |u̇| over the step on its collocation polynomial and where (the fraction of the step): where
+    at four points |u̇| stays above 1000 REST_SPEED and u̇ within 90 degrees of its start (a polynomial of this
+    small degree cannot come within REST_SPEED of zero between them without turning past), the least of them;
+    else the least of 16 points, refined by a golden-section search around it."""
+    v0, x0, y0v = corner.speed(y0, Z, 0.0)
+    best, at, plain = v0, 0.0, True
+    for i in range(1, 5):
+        size, vx, vy = corner.speed(y0, Z, i / 4.0)
+        if size < best:
+            best, at = size, i / 4.0
+        plain = plain and size > 1e3 * REST_SPEED and vx * x0 + vy * y0v > 0.0
+    if plain and v0 > 1e3 * REST_SPEED:
+        return best, at
+    best, at = v0, 0.0
     for i in range(1, 17):
-        theta = i / 16.0
-        vx, vy = corner.dense(y0, Z, theta, 2), corner.dense(y0, Z, theta, 3)
-        speed = vx * vx + vy * vy
-        if speed < best:
-            best, at = speed, theta
+        size = corner.speed(y0, Z, i / 16.0)[0]
+        if size < best:
+            best, at = size, i / 16.0
     lo, hi = max(at - 1.0 / 16.0, 0.0), min(at + 1.0 / 16.0, 1.0)
     for _ in range(40):
         a = hi - 0.6180339887498949 * (hi - lo)
         b = lo + 0.6180339887498949 * (hi - lo)
-        va = corner.dense(y0, Z, a, 2) ** 2 + corner.dense(y0, Z, a, 3) ** 2
-        vb = corner.dense(y0, Z, b, 2) ** 2 + corner.dense(y0, Z, b, 3) ** 2
+        va, vb = corner.speed(y0, Z, a)[0], corner.speed(y0, Z, b)[0]
         if va < vb:
             hi = b
         else:
@@ -425,7 +524,7 @@ def _slowest(y0, Z):
             best, at = va, a
         if vb < best:
             best, at = vb, b
-    return math.sqrt(best), at
+    return best, at
 
 
 @scalar.jit
@@ -499,10 +598,11 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
     samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
     law = rows if compiled else rows.tolist()
     rigid = np.ascontiguousarray(rigid_rows, dtype=float)
+    alike = surfaces_alike(rows, L1, L3)
     omega = math.sqrt(G / (L1 + L3))
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
                     np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
-                    np.ascontiguousarray(n1, dtype=float), law, rigid if compiled else rigid.tolist(), samples,
+                    np.ascontiguousarray(n1, dtype=float), law, rigid if compiled else rigid.tolist(), alike, samples,
                     float(L1), float(L3), G, 2.0 * float(zeta) * omega, float(RTOL), float(ATOL), *tableau(compiled),
                     *work, corner.workspace(), np.zeros(corner.S * corner.N), np.zeros(corner.N),
                     np.zeros(corner.N), np.zeros(corner.N), u, v, u1, v1, phase, force, mu, heat, temperature)
@@ -515,6 +615,22 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
                            f"smallest) in the sample interval at t = {time[k]:g} s; report the record and the "
                            f"structure")
     return u, v, u1, v1, phase, force, mu, temperature
+
+
+def surfaces_alike(rows, L1, L3, rel=1e-12):
+    """Whether the surfaces' coefficients are equal (to ``rel``) wherever they slide in proportion (s_j = L_j ω):
+    μ̄_1 = μ̄_3 under Coulomb friction; under a law, the same law and values, pendulums and weights. Then the
+    hinge never turns (p_1 = p_3 from rest, z_1 = z_3, u̇_j = L_j u̇ / L: the flow's equations hold) and both
+    surfaces slide as the rigid slider, exactly; a relative difference ``rel`` in μ̄ turns the hinge by about
+    rel μ̄, of no account."""
+    r1, r3 = np.asarray(rows, dtype=float)
+    if r1[KIND] != r3[KIND]:
+        return False
+    close = lambda a, b: abs(a - b) <= rel * max(abs(a), abs(b))  # noqa: E731
+    if r1[KIND] == 0.0:
+        return close(r1[WEIGHT] * r1[FACTOR] * r1[MU], r3[WEIGHT] * r3[FACTOR] * r3[MU])
+    return (close(L1, L3) and close(r1[WEIGHT] * r1[FACTOR], r3[WEIGHT] * r3[FACTOR]) and close(r1[RATIO], r3[RATIO])
+            and np.array_equal(r1[MU:], r3[MU:]))
 
 
 def respond(ground, times, geometry, structure) -> Response:
