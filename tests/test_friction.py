@@ -210,6 +210,46 @@ def test_the_envelope_over_the_bounds_is_the_largest_of_the_bound_runs(tmp_path)
     assert np.all(lower > nominal)  # less friction, more displacement on this record
 
 
+def _panel(fig, title):
+    return next(ax for ax in fig.axes if ax.get_title().startswith(title))
+
+
+def test_a_suite_crossed_with_bounds_draws_each_bound_and_each_records_envelope(tmp_path):
+    """Records x bounds: a mark per record and bound (a marker per bound), each record's largest over the
+    bounds as a bar at it, the suite's mean of the bounds' largest as a line across (its plots failed with
+    'only 0-dimensional arrays can be converted to Python scalars')."""
+    from matplotlib.collections import LineCollection
+
+    from dccss.studies import plots
+
+    study, ds = _bounds_study(tmp_path)
+    fig = plots.maps(ds, {}, "caption")
+    ax = _panel(fig, "max |stroke u|")
+    (bars,) = [c for c in ax.collections if isinstance(c, LineCollection) and c.get_gid() == "envelope"]
+    heights = [segment[0][1] for segment in bars.get_segments()]
+    assert np.allclose(heights, 100.0 * ds["stroke_max_abs_envelope"].sel(model="compliant").values, rtol=1e-12)
+    marks = {tuple(np.round(ln.get_ydata(), 12)) for ln in ax.get_lines()}
+    for bound in ("lower", "nominal", "upper"):
+        assert tuple(np.round(100.0 * ds["stroke_max_abs"].sel(model="compliant", property=bound).values, 12)) in marks
+    mean = 100.0 * float(ds["stroke_max_abs_suite_envelope"].sel(model="compliant", statistic="mean"))
+    assert any(np.allclose(ln.get_ydata(), mean) for ln in ax.get_lines())
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    assert {"property = lower", "property = nominal", "property = upper"} <= set(labels)
+
+
+def test_bounds_crossed_with_a_scale_draw_their_envelope(tmp_path):
+    """Scale x bounds: a curve per bound, and the largest over the bounds drawn over them (it was computed, not
+    drawn)."""
+    from dccss.studies import plots
+
+    study, ds = _bounds_study(tmp_path, excitation={"kind": "record", "file": "records/synthetic.AT2"},
+                              sweep={"scale": [1.0, 2.0], "property": ["lower", "nominal", "upper"]})
+    fig = plots.maps(ds, {}, "caption")
+    for title, name, factor in (("max |stroke u|", "stroke_max_abs", 100.0), ("max |F/W|", "shear_ratio_max_abs", 1.0)):
+        (line,) = [ln for ln in _panel(fig, title).get_lines() if ln.get_gid() == "envelope"]
+        assert np.allclose(line.get_ydata(), factor * ds[f"{name}_envelope"].sel(model="compliant").values, rtol=1e-12)
+
+
 def test_a_nominal_property_axis_is_the_study_without_it(tmp_path):
     _, plain = _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2", "records/synthetic_y.AT2"]})
     _, nominal = _bounds_study(tmp_path, sweep={"record": ["records/synthetic.AT2", "records/synthetic_y.AT2"],

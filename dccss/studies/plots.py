@@ -57,6 +57,7 @@ LINE_INCHES = (4.0, 3.4)  # width and height of a panel of curves
 MAP_INCHES = (4.4, 3.2)  # width (with its colour bar: its title's first line fits) and height of a map
 MAP_MARGIN = 0.6  # the maps figure's margin beside its maps (inches)
 FAILURE_SPACING = 10.0  # points between the failure marks of different curves at one x
+ROTATE_FROM, SMALL_FROM = 8, 16  # categories beyond which their tick labels stand upright, then get smaller
 
 #: (summary variable, label, factor to plot units, plot unit)
 SUMMARY_VARIABLES = [
@@ -545,8 +546,10 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     return _complete(fig, title, caption, legend)
 
 
-#: how a summary's envelope over the friction's bounds is drawn (``combine.envelope``)
+#: how a summary's envelope over the friction's bounds is drawn (``combine.envelope``), and its legend
 ENVELOPE_LOOK = {"ls": (0, (4, 2)), "lw": 0.9}
+ENVELOPE_OVER = {"ls": (0, (3, 2)), "lw": 1.3, "color": "0.1"}  # over the bounds' curves, which it follows
+ENVELOPE_LABEL = "largest over the friction's bounds: the design displacement and force (ASCE 7-22 17.2.8.4, EN 15129)"
 #: the statistics a suite's maps draw, in place of its records (``_suite_maps``): the design values of
 #: EN 1998-1 §4.3.3.4.3 from seven records on and from fewer (both defined wherever a record has a value)
 SUITE_MAPS = {"mean": "mean of the records", "max": "largest of the records"}
@@ -810,10 +813,14 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
                 ax.plot(x, values, **style, **marker, **(SUITE_RECORDS if f"{name}_suite" in ds else {}))
                 capacity, failed = _case_flags(sel)
                 _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
-            if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
-                suite = ds[f"{name}_suite"].sel(model=model)
+            suite = _suite_lines(ds, name)
+            if suite is not None:  # the suite's mean and 84th percentile over the records
                 for statistic, look in _suite_looks(style).items():
-                    ax.plot(x, factor * suite.sel(statistic=statistic).values, **look)
+                    ax.plot(x, factor * ds[suite].sel(model=model, statistic=statistic).transpose(x_name).values,
+                            **look)
+            if f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims:  # the bounds' largest
+                ax.plot(x, factor * ds[f"{name}_envelope"].sel(model=model).transpose(x_name).values,
+                        **ENVELOPE_OVER, zorder=style["zorder"] + 1, gid="envelope")
         _failure_marks(ax, failures)
         _line_marks(ax, ds, x_name, marks)
         _scale(ax, "x", x_name, x)
@@ -824,7 +831,9 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
     if "statistic" in ds.coords:
-        legend.append(_suite_handles())
+        legend.append(_suite_handles(bounds="property" in ds.dims))
+    if any(f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims for name, *_ in variables):
+        legend.append([Line2D([], [], **ENVELOPE_OVER, label=ENVELOPE_LABEL)])
     return legend + [_flag_handles(ds, models, drawn)]
 
 
@@ -835,9 +844,10 @@ def _suite_looks(style):
     return {"mean": mean, "p84_lognormal": dict(SUITE_LINES["p84_lognormal"], color=style["color"])}
 
 
-def _suite_handles():
-    return [Line2D([], [], color="0.3", **look, label=SUITE_LABELS[statistic])
-            for statistic, look in SUITE_LINES.items()]
+def _suite_handles(bounds=False):
+    """The legend of a suite's statistics (``bounds``: of the largest over the friction's bounds)."""
+    return [Line2D([], [], color="0.3", **look, label=SUITE_LABELS[statistic] + (
+        ", largest over the friction's bounds" if bounds else "")) for statistic, look in SUITE_LINES.items()]
 
 
 def _shortened(names, most=24):
@@ -852,39 +862,76 @@ def _shortened(names, most=24):
 
 
 def _draw_categories(axs, ds, drawn, marks, variables, models):
-    """One panel per variable: a mark per model at each category's integer position."""
+    """One panel per variable: a mark per model at each category's integer position (and, with a second
+    categorical axis, a mark per its category side by side around it, a marker each); a suite's statistics
+    as lines across; the largest over the friction's bounds (``combine.envelope``) as a line across where
+    it is one value, as a bar at each category where it is one per category."""
     name_axis = drawn[0]
     names = [str(v) for v in ds[name_axis].values]
     x = np.arange(len(names), dtype=float)
+    groups = [str(v) for v in ds[drawn[1]].values] if len(drawn) > 1 else [None]
+    width = min(0.7, 0.25 * len(groups))  # the side-by-side marks' spread around a category
+    offsets = np.linspace(-width / 2, width / 2, len(groups)) if len(groups) > 1 else [0.0]
     for ax, (name, label, factor, unit) in zip(axs, variables):
         failures = []
         for model in (m for m in models if _defined(ds, name, m)):
-            sel = ds.sel(model=model)
-            values = factor * sel[name].values
             style = _line(model, models)
-            ax.plot(x, values, ls="none", color=style["color"], zorder=style["zorder"], **_marker(model))
-            capacity, failed = _case_flags(sel)
-            _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
-            if f"{name}_suite" in ds:  # the suite's mean and 84th percentile over the records
+            for g, (group, offset) in enumerate(zip(groups, offsets)):
+                sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
+                values = factor * sel[name].values
+                marker = _marker(model) if group is None else dict(_marker(model), marker=GROUP_MARKERS[g % len(
+                    GROUP_MARKERS)])
+                ax.plot(x + offset, values, ls="none", color=style["color"], zorder=style["zorder"], **marker)
+                capacity, failed = _case_flags(sel)
+                _flag_marks(ax, x + offset, values, capacity, failed, style["color"], failures)
+            suite = _suite_lines(ds, name)
+            if suite is not None:  # the suite's mean and 84th percentile over the records
                 for statistic, look in _suite_looks(style).items():
-                    ax.axhline(factor * float(ds[f"{name}_suite"].sel(model=model, statistic=statistic)), **look)
+                    ax.axhline(factor * float(ds[suite].sel(model=model, statistic=statistic)), **look)
             if f"{name}_envelope" in ds:  # the design demand: the largest over the friction's bounds
-                ax.axhline(factor * float(ds[f"{name}_envelope"].sel(model=model)), **ENVELOPE_LOOK,
-                           color=style["color"], zorder=style["zorder"] - 1)
+                envelope = factor * ds[f"{name}_envelope"].sel(model=model)
+                if envelope.ndim == 0:
+                    ax.axhline(float(envelope), **ENVELOPE_LOOK, color=style["color"], zorder=style["zorder"] - 1)
+                else:  # one per category: a bar across its marks
+                    bars = [[(xi - width / 2 - 0.1, v), (xi + width / 2 + 0.1, v)]
+                            for xi, v in zip(x, envelope.transpose(name_axis).values)]
+                    ax.add_collection(LineCollection(bars, colors=style["color"], linestyles=ENVELOPE_LOOK["ls"],
+                                                     linewidths=1.6, zorder=style["zorder"] - 1, gid="envelope"))
         _failure_marks(ax, failures)
         _line_marks(ax, ds, name_axis, marks)
-        ax.set_xticks(x, _shortened(names), rotation=30 if name_axis == "record" else 0,
-                      ha="right" if name_axis == "record" else "center")
+        _category_ticks(ax, x, names, name_axis)
         ax.set_xlim(-0.6, len(names) - 0.4)
         ax.set_xlabel(_axis_label(ds, name_axis))
         _summary_axes(ax, ds, name, label, unit, models)
-    envelope = [[Line2D([], [], color="0.3", **ENVELOPE_LOOK, label="largest over the friction's bounds: the "
-                                                                   "design displacement and force (ASCE 7-22 "
-                                                                   "17.2.8.4, EN 15129)")]] \
+    envelope = [[Line2D([], [], color="0.3", **ENVELOPE_LOOK, label=ENVELOPE_LABEL)]] \
         if any(f"{name}_envelope" in ds for name, *_ in variables) else []
-    return [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
-             for m in models]] + ([_suite_handles()] if "statistic" in ds.coords else []) + envelope + \
-        [_flag_handles(ds, models, drawn)]
+    legend = [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
+               for m in models]]
+    if len(drawn) > 1:
+        legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
+                              label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
+    suite = [_suite_handles(bounds="property" in ds.dims)] if "statistic" in ds.coords else []
+    return legend + suite + envelope + [_flag_handles(ds, models, drawn)]
+
+
+def _suite_lines(ds, name):
+    """The variable of a summary's suite statistics drawn as lines across: ``<name>_suite``, or over the
+    friction's bounds their largest (``<name>_suite_envelope``); None where there is neither."""
+    if f"{name}_suite" not in ds:
+        return None
+    if "property" in ds[f"{name}_suite"].dims:
+        return f"{name}_suite_envelope" if f"{name}_suite_envelope" in ds else None
+    return f"{name}_suite"
+
+
+def _category_ticks(ax, x, names, name_axis):
+    """Tick labels of the categories: a suite's records turned to fit (upright beyond ROTATE_FROM records,
+    smaller beyond SMALL_FROM), names shortened to keep them apart."""
+    many = len(names) > ROTATE_FROM
+    rotation = 90 if many else (30 if name_axis == "record" else 0)
+    small = {"fontsize": 7} if len(names) > SMALL_FROM else {}
+    ax.set_xticks(x, _shortened(names, 16 if many else 24), rotation=rotation,
+                  ha="center" if many else ("right" if name_axis == "record" else "center"), **small)
 
 
 def _scale(ax, which, name, values):

@@ -618,7 +618,8 @@ def layout(sizes: dict, categorical) -> tuple[str, list]:
     """(kind, drawn axes) of a study's summary plots, from its axes' sizes (in sweep order) and which of
     them are categorical: axes of one value are never drawn; two numeric axes make maps over the
     first two, one numeric axis curves against it (a categorical axis then gives one curve per
-    category), a categorical axis alone marks per category."""
+    category), categorical axes alone marks per category of the first (a second's categories side by side
+    in each)."""
     names = list(sizes)
     spread = [n for n in names if sizes[n] > 1]
     numeric = [n for n in spread if n not in categorical]
@@ -628,7 +629,7 @@ def layout(sizes: dict, categorical) -> tuple[str, list]:
     if numeric:
         return "lines", numeric + groups[:1]
     if groups:
-        return "categories", groups[:1]
+        return "categories", groups[:2]
     return ("categories" if names[0] in categorical else "lines"), names[:1]
 
 
