@@ -75,6 +75,7 @@ from .excitation import (
     Vertical,
     VerticalSine,
     check_step,
+    has_vertical,
     read_table,
 )
 from .mechanics import registry
@@ -225,7 +226,7 @@ def record_from(value, base: Path, key="excitation"):
     """A Record (a ground-motion file processed to displacement), or a RecordPair when ``file`` is
     a list of two files [x, y], from its mapping; ``units`` states the units of the files' motion
     when a file does not."""
-    from .records import BASELINES, PAIR_SPANS, RecordPair, WindowError, read_components, units_from
+    from .records import BASELINES, PAIR_SPANS, RecordPair, VerticalError, WindowError, read_components, units_from
 
     file = value["file"]
     if isinstance(file, list):
@@ -278,7 +279,9 @@ def record_from(value, base: Path, key="excitation"):
                                               units=units, pair_span=pair_span)
             motion = RecordPair.of(*horizontals, files, rotation) if isinstance(file, list) else horizontals[0]
         except ValueError as err:
-            raise CaseError(f"{key}.{'window' if isinstance(err, WindowError) else 'file'}: {err}") from None
+            where = ("window" if isinstance(err, WindowError) else
+                     "vertical" if isinstance(err, VerticalError) else "file")
+            raise CaseError(f"{key}.{where}: {err}") from None
         motion.vertical = up
         return motion
 
@@ -596,6 +599,8 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
         if kind == "articulated":
             problems.check("slider", _pendulums, structure, geometry)
     friction = problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None)
+    if excitation is not None and has_vertical(excitation) and m["structure"] is None:
+        problems.add("excitation", VERTICAL_WITHOUT_STRUCTURE)
     model = problems.check("model", choice, m["model"], "model", registry.names()) if "model" in m else None
     if kind == "articulated" and model not in (None, "compliant"):
         problems.add("model", f"model: an articulated slider's halves stay seated on their surfaces (compliant sliding "
@@ -609,6 +614,12 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
                 normals=normals, options=options, id=m["id"], parameters_hash=parameters_hash(mapping),
                 capacity=capacity, on_failure=on_failure, structure=structure, slider=kind, hinge=hinge,
                 friction=friction)
+
+
+#: a vertical component without a structure: the imposed ground displacement has no normal force to act on
+VERTICAL_WITHOUT_STRUCTURE = ("excitation.vertical: a vertical ground acceleration acts on an isolated structure's "
+                              "normal force (structure); the imposed ground displacement (no structure) would ignore "
+                              "it: give structure, or drop vertical")
 
 
 def _imposed_friction(value, kind, structure) -> tuple | None:

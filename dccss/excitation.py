@@ -310,6 +310,15 @@ def underlying(excitation):
     return excitation
 
 
+def has_vertical(excitation) -> bool:
+    """Whether an excitation (through its wrappers) carries a vertical ground acceleration (``Vertical``)."""
+    while isinstance(excitation, _Wrapper):
+        if isinstance(excitation, Vertical):
+            return True
+        excitation = excitation.excitation
+    return False
+
+
 class _Wrapper:
     """An excitation built on another (``self.excitation``): its kind and time span are the inner one's."""
 
@@ -459,8 +468,9 @@ class Scaled(_Wrapper):
         return self.factor * self.excitation.velocity(t)
 
     def ground_acceleration(self) -> Ground:
-        """The inner excitation's times the factor, its vertical too (a record's scale is its vertical's)."""
-        return self.excitation.ground_acceleration().scaled(self.factor, vertical=self.factor)
+        """The inner excitation's times the factor, its vertical times its size (a record's scale is its
+        vertical's; a negative one mirrors the horizontal motion, and gravity keeps its direction)."""
+        return self.excitation.ground_acceleration().scaled(self.factor, vertical=abs(self.factor))
 
     def attrs(self):
         return {**self.excitation.attrs(), "excitation_scale": self.factor}
@@ -549,6 +559,17 @@ def check_step(dt, excitation, key="dt") -> float:
     if dt > span * (1 + 1e-12):
         raise CaseError(f"{key}: {dt!r} s is larger than the excitation's duration {span!r} s")
     return dt
+
+
+def uncovered(excitation, times, dt) -> str | None:
+    """What a run at step ``dt`` (its step ``times``) leaves of the excitation's duration, said; None where
+    dt divides it."""
+    left = excitation.t_end - times[-1]
+    if left > 1e-9 * float(dt):
+        span = excitation.t_end - excitation.t_start
+        return (f"dt = {float(dt):g} s does not divide the excitation's duration ({span:g} s): the history ends at "
+                f"t = {times[-1]:.6g} s, {left:.3g} s before the motion does")
+    return None
 
 
 def step_times(excitation, dt) -> np.ndarray:

@@ -905,6 +905,10 @@ class PairWarning(RecordWarning):
     """Components that a pair joins by a rule: different lengths, or axes not at right angles."""
 
 
+class VerticalError(ValueError):
+    """A record's vertical component cannot be read or joined with its horizontal component(s)."""
+
+
 def _frame(az1, az2) -> tuple[np.ndarray, float]:
     """The matrix that turns the two sensors' readings into (east, north), and how far (degrees) their
     axes are from right angles (0: orthogonal). Sensor i reads the projection of the ground's motion on
@@ -961,24 +965,44 @@ def read_components(paths, vertical=None, *, scale=1.0, window=None, baseline=No
         One per file of ``paths``.
     vertical : Record or None
         The vertical component, up positive (a file labelled ``DWN`` or ``DOWN`` on its line 2 is
-        negated: PEER's down-positive channel).
+        negated: PEER's down-positive channel, with a :class:`RecordWarning` saying so), scaled by
+        |scale|: a negative scale mirrors the horizontal motion, and gravity keeps its direction.
+
+    Raises
+    ------
+    VerticalError
+        Where the vertical file cannot be read, names a horizontal direction, or cannot be joined with
+        horizontal components that join among themselves.
     """
     if pair_span not in PAIR_SPANS:
         raise ValueError(f"pair_span must be one of {list(PAIR_SPANS)}, got {pair_span!r}")
-    raws = [read_raw(p, units) for p in paths] + ([read_raw(vertical, units)] if vertical is not None else [])
-    direction = peer_azimuth(vertical) if vertical is not None else None
-    if direction not in (None, "vertical"):
-        raise ValueError(f"record {str(vertical)!r}: line 2 names a horizontal direction "
-                         f"({direction:g} degrees); the vertical component is the file labelled UP, "
-                         f"DWN, V, UD or Z")
+    raws = [read_raw(p, units) for p in paths]
+    if vertical is not None:
+        try:
+            raws.append(read_raw(vertical, units))
+        except ValueError as err:
+            raise VerticalError(f"the vertical component: {err}") from None
+        direction = peer_azimuth(vertical)
+        if direction not in (None, "vertical"):
+            raise VerticalError(f"record {str(vertical)!r}: line 2 names a horizontal direction ({direction:g} "
+                                f"degrees); the vertical component is the file labelled UP, DWN, V, UD or Z")
     windows = [window] * len(raws)
     if len(raws) > 1 and not all(np.array_equal(r.time, raws[0].time) for r in raws):
-        raws, windows = _joined(raws, window, pair_span, scale)
+        try:
+            raws, windows = _joined(raws, window, pair_span, scale, vertical is not None)
+        except ValueError as err:
+            horizontal = raws[:len(paths)]
+            if vertical is not None and all(np.array_equal(r.time, horizontal[0].time) for r in horizontal):
+                raise VerticalError(str(err)) from None  # the horizontals alone join: the vertical does not
+            raise
     if vertical is not None and _down_positive(vertical):
         raws[-1] = raws[-1]._replace(values=-raws[-1].values,
                                      span={**(raws[-1].span or {}), "record_sign": "negated: the file's channel "
                                                                                    "is down-positive (DWN)"})
-    records = [r.record(scale=scale, window=w, baseline=baseline) for r, w in zip(raws, windows)]
+        warnings.warn(f"record {Path(vertical).name!r}: the vertical component's channel is down-positive (DWN on "
+                      f"line 2): negated, so that up is positive", RecordWarning, stacklevel=2)
+    factors = [scale] * len(paths) + ([abs(scale)] if vertical is not None else [])
+    records = [r.record(scale=f, window=w, baseline=baseline) for r, w, f in zip(raws, windows, factors)]
     return (records, None) if vertical is None else (records[:-1], records[-1])
 
 
@@ -990,16 +1014,17 @@ def _down_positive(path) -> bool:
     return len(lines) > 1 and re.match(r"^(DWN|DOWN)\b", lines[1].rsplit(",", 1)[-1].strip(), re.IGNORECASE) is not None
 
 
-def _what(raws) -> str:
-    """'record pair' or 'record' (one horizontal and its vertical), for messages."""
-    return "record pair" if sum(peer_azimuth(r.path) != "vertical" for r in raws) == 2 else "record"
+def _what(raws, vertical=False) -> str:
+    """'record pair' or 'record', and its vertical component where the last of ``raws`` is one, for messages."""
+    horizontal = len(raws) - (1 if vertical else 0)
+    return ("record pair" if horizontal == 2 else "record") + (" and its vertical component" if vertical else "")
 
 
-def _joined(raws, window, pair_span, scale):
+def _joined(raws, window, pair_span, scale, vertical=False):
     """The raws (padded, for "longest") and the window of each that put them on the same sample times."""
     steps = [_uniform_step(r) for r in raws]
     if None in steps or max(steps) - min(steps) > 1e-9 * min(steps):
-        raise ValueError(f"{_what(raws)}: the components must share their step to be joined, but "
+        raise ValueError(f"{_what(raws, vertical)}: the components must share their step to be joined, but "
                          + " and ".join(_describe(r) for r in raws)
                          + "; dccss does not resample: give components recorded together (the same dt)")
     dt = steps[0]
@@ -1007,17 +1032,17 @@ def _joined(raws, window, pair_span, scale):
     ends = np.array([float(r.time[-1]) for r in raws])
     offsets = (starts - starts.min()) / dt
     if np.max(np.abs(offsets - np.round(offsets))) > 1e-9:
-        raise ValueError(f"{_what(raws)}: the components' samples are not at the same times (their starts are not a "
-                         f"whole number of steps apart): " + " and ".join(_describe(r) for r in raws))
+        raise ValueError(f"{_what(raws, vertical)}: the components' samples are not at the same times (their starts "
+                         f"are not a whole number of steps apart): " + " and ".join(_describe(r) for r in raws))
     names = ", ".join(_describe(r) for r in raws)
     if pair_span == "common":
         low, high = float(starts.max()), float(ends.min())
         if high - low < 2 * dt:
-            raise ValueError(f"{_what(raws)}: the components share no time ({names}): nothing to run")
+            raise ValueError(f"{_what(raws, vertical)}: the components share no time ({names}): nothing to run")
         if window is not None and (window[0] < low - _SNAP * dt or window[1] > high + _SNAP * dt):
-            raise WindowError(f"{_what(raws)}: the window ({window[0]!r}, {window[1]!r}) s lies outside the time "
-                              f"all components cover, {low!r} to {high!r} s ({names}); pair_span: longest pads the "
-                              f"shorter ones instead")
+            raise WindowError(f"{_what(raws, vertical)}: the window ({window[0]!r}, {window[1]!r}) s lies outside "
+                              f"the time all components cover, {low!r} to {high!r} s ({names}); pair_span: longest "
+                              f"pads the shorter ones instead")
         told, joined = [], []
         for r in raws:
             # a window (within the common span) keeps nothing the join drops: the run loses nothing to it
@@ -1031,14 +1056,15 @@ def _joined(raws, window, pair_span, scale):
                 told.append(f"{r.path.name!r}: {np.count_nonzero(out) * dt:.4g} s"
                             + (f" (largest |a| {peak / G:.3g} g)" if r.units.quantity == "acceleration" else ""))
         if told:
-            warnings.warn(f"{_what(raws)}: components of different lengths ({names}) run over the {high - low:.6g} s "
-                          f"all cover, {low:g} to {high:g} s (pair_span: common); dropped " + "; ".join(told),
+            warnings.warn(f"{_what(raws, vertical)}: components of different lengths ({names}) run over the "
+                          f"{high - low:.6g} s all cover, {low:g} to {high:g} s (pair_span: common); dropped "
+                          + "; ".join(told),
                           PairWarning, stacklevel=3)
         return joined, [window if window is not None else (low, high)] * len(raws)
     not_acc = [r.path.name for r in raws if r.units.quantity != "acceleration"]
     if not_acc:
-        raise ValueError(f"{_what(raws)}: pair_span: longest pads with zero acceleration, but {not_acc} hold(s) "
-                         f"velocity or displacement; use pair_span: common")
+        raise ValueError(f"{_what(raws, vertical)}: pair_span: longest pads with zero acceleration, but {not_acc} "
+                         f"hold(s) velocity or displacement; use pair_span: common")
     n = int(round((ends.max() - starts.min()) / dt)) + 1
     cover = next((r.time for r in raws if r.time.size == n and r.time[0] == starts.min()), None)
     time = cover if cover is not None else starts.min() + dt * np.arange(n)
@@ -1051,8 +1077,9 @@ def _joined(raws, window, pair_span, scale):
                                                                   "record_padded_s": float(extra)}))
         if extra:
             told.append(f"{r.path.name!r}: {extra:.4g} s")
-    warnings.warn(f"{_what(raws)}: components of different lengths ({names}) padded with zero acceleration to the "
-                  f"longest, {float(time[0]):g} to {float(time[-1]):g} s (pair_span: longest): " + "; ".join(told),
+    warnings.warn(f"{_what(raws, vertical)}: components of different lengths ({names}) padded with zero "
+                  f"acceleration to the longest, {float(time[0]):g} to {float(time[-1]):g} s (pair_span: longest): "
+                  + "; ".join(told),
                   PairWarning, stacklevel=3)
     return padded, [window] * len(raws)
 

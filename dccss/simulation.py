@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from .excitation import step_times
+from .excitation import step_times, uncovered
 from .mechanics import models, runs
 from .mechanics.capacity import CapacityError
 from .mechanics.geometry import Geometry
@@ -93,11 +93,9 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if structure is not None:
         slider, hinge = structure.slider, structure.hinge
     times = step_times(excitation, dt)
-    left = excitation.t_end - times[-1]
-    if left > 1e-9 * float(dt):
-        warnings.warn(f"dt = {float(dt):g} s does not divide the excitation's duration "
-                      f"({excitation.t_end - excitation.t_start:g} s): the history ends at t = {times[-1]:.6g} s, "
-                      f"{left:.3g} s before the motion does", stacklevel=2)
+    short = uncovered(excitation, times, dt)
+    if short:
+        warnings.warn(short, stacklevel=2)
     if slider == "articulated":
         return articulated(geometry, excitation, times, dt=dt, structure=structure, hinge=hinge, friction=friction,
                            capacity=capacity, on_failure=on_failure, attrs=attrs, progress=progress)

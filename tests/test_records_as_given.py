@@ -1,6 +1,8 @@
 """Records as PEER gives them: pairs of different lengths, components not at right angles, the vertical
 component (with uplift), per-record settings and PEER downloads as suites."""
 
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -145,6 +147,101 @@ def test_a_down_positive_vertical_is_negated(tmp_path):
     down = _case(tmp_path, {"kind": "record", "file": "H.AT2", "vertical": "DWN.AT2"}).excitation
     assert np.array_equal(up.vertical.acceleration, down.vertical.acceleration)
     assert "down-positive" in down.attrs()["record_vertical_sign"]
+
+
+def test_a_down_positive_vertical_is_said_in_the_log_and_the_run_summary(tmp_path):
+    """Negating a DWN vertical is said: a RecordWarning, which dccss run prints (it was done without a word)."""
+    a, _ = _accelerations()
+    _write(tmp_path, "H.AT2", a, "0")
+    _write(tmp_path, "DWN.AT2", -0.3 * a, "DWN")
+    with pytest.warns(RecordWarning, match=r"record 'DWN.AT2': the vertical component's channel is down-positive "
+                                           r"\(DWN on line 2\): negated, so that up is positive"):
+        _case(tmp_path, {"kind": "record", "file": "H.AT2", "vertical": "DWN.AT2"})
+    (tmp_path / "case.yaml").write_text(yaml.safe_dump({
+        "prototype": "DFP1", "excitation": {"kind": "record", "file": "H.AT2", "vertical": "DWN.AT2"}, "dt": 0.01,
+        "model": "compliant", "structure": {"friction": 0.04}}))
+    run = subprocess.run([sys.executable, "-m", "dccss", "run", str(tmp_path / "case.yaml"), "-o",
+                          str(tmp_path / "out.nc"), "-q"], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert "dccss: warning: record 'DWN.AT2': the vertical component's channel is down-positive" in run.stderr
+
+
+def test_a_suites_combined_results_carry_each_records_vertical_sign(tmp_path):
+    a, _ = _accelerations()
+    _write(tmp_path, "H.AT2", a, "0")
+    _write(tmp_path, "UP.AT2", 0.3 * a, "UP")
+    _write(tmp_path, "DWN.AT2", -0.3 * a, "DWN")
+    config = {"study": {"name": "signs"}, "prototype": "DFP1", "dt": 0.01, "models": ["compliant"],
+              "excitation": {"kind": "record", "window": [0.0, 4.0]}, "structure": {"friction": 0.04},
+              "sweep": {"record": [{"file": "H.AT2", "vertical": "UP.AT2", "name": "up"},
+                                   {"file": "H.AT2", "vertical": "DWN.AT2", "name": "down"}]}}
+    with pytest.warns(RecordWarning, match="down-positive"):
+        study = Study.from_config(config, tmp_path)
+    ds = combine(study, {"compliant": [run_chunk(study, "compliant", k) for k in range(study.grid.n_chunks)]})
+    assert ds["record_vertical_sign"].sel(record="up") == 1 and ds["record_vertical_sign"].sel(record="down") == -1
+    assert "DWN" in ds["record_vertical_sign"].attrs["long_name"]
+    # the same motion either way
+    assert ds["stroke_max_abs"].sel(record="up").item() == ds["stroke_max_abs"].sel(record="down").item()
+
+
+def test_a_vertical_without_a_structure_is_refused(tmp_path):
+    """Under an imposed ground displacement the vertical acts on nothing: refused, not ignored and recorded."""
+    a, _ = _accelerations()
+    _write(tmp_path, "H.AT2", a, "0")
+    _write(tmp_path, "UP.AT2", 0.3 * a, "UP")
+    message = r"excitation.vertical: a vertical ground acceleration acts on an isolated structure's normal force"
+    with pytest.raises(CaseError, match=message):
+        case_from({"prototype": "DFP1", "excitation": {"kind": "record", "file": "H.AT2", "vertical": "UP.AT2"},
+                   "dt": 0.01, "model": "compliant"}, tmp_path)
+    with pytest.raises(CaseError, match=message):
+        case_from({"prototype": "DFP1", "excitation": {"kind": "sine", "amplitude": 0.1, "omega": 3.0, "duration": 4.0,
+                                                       "vertical": {"kind": "sine", "amplitude": 2.0, "omega": 9.0}},
+                   "dt": 0.01, "model": "compliant"}, tmp_path)
+    config = {"study": {"name": "v"}, "prototype": "DFP1", "dt": 0.01, "models": ["compliant"],
+              "excitation": {"kind": "record"}, "sweep": {"record": [{"file": "H.AT2", "vertical": "UP.AT2"}]}}
+    with pytest.raises(CaseError, match=r"sweep.record: the records' vertical components act on an isolated "
+                                        r"structure's normal force \(structure\)"):
+        Study.from_config(config, tmp_path)
+
+
+def test_a_bad_vertical_is_named_as_the_vertical(tmp_path):
+    """A vertical that is missing or does not join its horizontal: excitation.vertical, 'its vertical component'
+    (they said excitation.file and 'record pair')."""
+    a, _ = _accelerations()
+    _write(tmp_path, "H.AT2", a, "0")
+    _write(tmp_path, "V2.AT2", 0.3 * a[::2], "UP", dt=0.02)
+    _write(tmp_path, "V.AT2", 0.3 * a, "UP")
+    with pytest.raises(CaseError, match=r"^excitation.vertical: the vertical component: record file '.*nothere.AT2': "
+                                        r"does not exist"):
+        _case(tmp_path, {"kind": "record", "file": "H.AT2", "vertical": "nothere.AT2"})
+    with pytest.raises(CaseError, match=r"^excitation.vertical: record and its vertical component: the components "
+                                        r"must share their step"):
+        _case(tmp_path, {"kind": "record", "file": "H.AT2", "vertical": "V2.AT2"})
+    with pytest.raises(CaseError, match=r"^excitation.vertical: record '.*H.AT2': line 2 names a horizontal"):
+        _case(tmp_path, {"kind": "record", "file": "V.AT2", "vertical": "H.AT2"})
+
+
+def test_a_negative_scale_mirrors_the_horizontal_motion_not_the_vertical(tmp_path):
+    """scale -1.5: the horizontal accelerations negated, the vertical that of +1.5 (gravity keeps its direction:
+    it flipped the vertical too, unsaid), the structure's stroke mirrored; in a study's scale axis the same."""
+    a, _ = _accelerations()
+    _write(tmp_path, "H.AT2", a, "0")
+    _write(tmp_path, "UP.AT2", 0.6 * np.roll(a, 200), "UP")
+    plus, minus = (_case(tmp_path, {"kind": "record", "file": "H.AT2", "vertical": "UP.AT2", "scale": f})
+                   for f in (1.5, -1.5))
+    g_plus, g_minus = plus.excitation.ground_acceleration(), minus.excitation.ground_acceleration()
+    assert np.array_equal(g_minus.a0, -g_plus.a0) and np.array_equal(g_minus.v0, g_plus.v0)
+    assert minus.excitation.attrs()["record_vertical_scale"] == 1.5
+    up, down = plus.run(), minus.run()
+    assert np.array_equal(down["stroke"].values, -up["stroke"].values)
+    config = {"study": {"name": "mirror"}, "prototype": "DFP1", "dt": 0.01, "models": ["compliant"],
+              "excitation": {"kind": "record", "file": "H.AT2", "vertical": "UP.AT2"}, "structure": {"friction": 0.04},
+              "sweep": {"scale": [-1.5, 1.5]}}
+    study = Study.from_config(config, tmp_path)
+    ds = combine(study, {"compliant": [run_chunk(study, "compliant", k) for k in range(study.grid.n_chunks)]})
+    peaks = ds["stroke_max_abs"].sel(model="compliant").values
+    assert peaks[0] == peaks[1] and ds["normal_ratio_min"].sel(model="compliant").values[0] == \
+        ds["normal_ratio_min"].sel(model="compliant").values[1]
 
 
 def test_a_vertical_of_zeros_gives_todays_results_bit_for_bit(tmp_path):

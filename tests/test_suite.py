@@ -469,3 +469,33 @@ def test_a_suites_scaling_mistakes_name_no_record(suite, scale, message):
         Study.from_config({**CONFIG, "excitation": {"kind": "record", "scale": {"to": "spectral_acceleration",
                                                                                   "period": 9.5, "target": 0.2}},
                            "sweep": {"record": ["records/*.AT2"]}}, suite)
+
+
+# --- mistakes a suite's file makes ----------------------------------------------------------------------------
+def test_a_record_mappings_peer_scale_must_be_a_factor_above_zero(suite):
+    """peer_scale: -1.0 ran with a negative factor (a download's CSV refuses one)."""
+    config = {**CONFIG, "excitation": {"kind": "record", "scale": "peer"},
+              "sweep": {"record": [{"file": "records/RSN11_NORTH.AT2", "peer_scale": -1.0}]}, "histories": []}
+    with pytest.raises(StudyError, match=r"sweep.record\[0\].peer_scale: must be > 0, got -1.0"):
+        Study.from_config(config, suite)
+
+
+@pytest.mark.parametrize(("bounds", "message"), [
+    ({"lower": 1.3, "upper": 0.8}, r"structure.property.lower: 1.3 is above the nominal 1"),
+    ({"lower": 0.8, "upper": 0.9}, r"structure.property.upper: 0.9 is below the nominal 1"),
+])
+def test_bounds_on_the_wrong_side_of_nominal_are_refused(suite, bounds, message):
+    """property: {lower: 1.3, upper: 0.8} was accepted silently."""
+    config = {**CONFIG, "structure": {"friction": 0.05, "property": bounds},
+              "sweep": {"record": ["records/*.AT2"], "property": ["lower", "nominal", "upper"]}, "histories": []}
+    with pytest.raises(StudyError, match=message):
+        Study.from_config(config, suite)
+
+
+def test_a_step_that_does_not_divide_a_record_is_said_by_the_study(suite):
+    """The warning dccss run gives reached no study's log: a chunk now says it, naming the record."""
+    config = {**CONFIG, "dt": 0.03, "sweep": {"record": ["records/RSN11_NORTH.AT2"], "scale": [1.0]}, "histories": []}
+    study = Study.from_config(config, suite)
+    with pytest.warns(UserWarning, match=r"record 'RSN11_NORTH': dt = 0.03 s does not divide the excitation's "
+                                         r"duration \(8.99 s\)"):
+        run_chunk(study, "compliant", 0)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..excitation import underlying
+from ..excitation import has_vertical, underlying
 from ..mechanics.geometry import PARAMETERS, Geometry
 from ..mechanics.models import REGISTRY
 from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
@@ -181,6 +181,11 @@ def record_peaks(study) -> dict:
             **{k.removeprefix("record_"): attrs[0][k] for k in keys if k in attrs[0]}})
     if attrs[0].get("record_scaled_to") == "spectrum":  # scaled over a period range, as a suite
         out.update(_suite_spectra(study, attrs, np.array(scales)))
+    if any(has_vertical(e) for e in study.records.values()):  # each record's vertical: read as written or negated
+        signs = [-1 if "record_vertical_sign" in a else (1 if "record_vertical_source" in a else 0) for a in attrs]
+        out["record_vertical_sign"] = xr.Variable(("record",), np.array(signs, dtype=np.int8), {
+            "units": "1", "long_name": "the sign the record's vertical file is read with: 1 as written (up positive), "
+                                       "-1 negated (its channel down-positive, DWN on line 2), 0 no vertical file"})
     if "record_orientation" in attrs[0]:
         out["record_orientation"] = xr.Variable(("record",), np.array([a["record_orientation"] for a in attrs],
                                                                       dtype=object),

@@ -165,10 +165,12 @@ class Grid:
         for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
             own = {k: v[i] for k, v in parameters.items()}
             scale = float(values["scale"][i]) if "scale" in values else 1.0
-            factor = scale  # a swept scale is the record's: its vertical's too; a component keeps the vertical
+            # a swept scale is the record's: its vertical's too, by its size (a negative scale mirrors the horizontal
+            # motion, and gravity keeps its direction); a component keeps the vertical
+            factor = scale
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
-            ground = excitation.ground_acceleration(**own).scaled(factor, vertical=scale)
+            ground = excitation.ground_acceleration(**own).scaled(factor, vertical=abs(scale))
             response = structure.respond(ground, t, device, mine)
             out[:, i] = 0.0 - response.stroke
             responses.append(response)

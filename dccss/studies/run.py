@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import xarray as xr
 
 from ..case import Case, case_from
+from ..excitation import uncovered
 from ..mechanics import runs, structure
 from ..mechanics.capacity import CapacityError
 from ..mechanics.geometry import PARAMETERS
@@ -87,6 +90,10 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
         mine = dts == dt
         group = cases[mine]
         times = grid.times(dt, group)
+        short = uncovered(grid.excitation(group), times, dt)
+        if short:  # as dccss run says it of a case
+            record = grid.record_of(group)
+            warnings.warn(short if record is None else f"record {record!r}: {short}", stacklevel=2)
         report = None if progress is None else (lambda n, N, g=group, dt=dt: progress(n, N, len(g), dt))
         ground, responses = grid.imposed(group, times)
         # the pad's models run on the rigid sliders' cases; an articulated slider's halves have their own kinematics

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..case import (
+    VERTICAL_WITHOUT_STRUCTURE,
     excitation_from,
     geometry_from,
     newton_from,
@@ -21,7 +22,7 @@ from ..case import (
     structure_from,
 )
 from ..checks import CaseError, Problems, check_keys, choice, number
-from ..excitation import COMPONENTS, Component, Oriented, check_step, underlying
+from ..excitation import COMPONENTS, Component, Oriented, check_step, has_vertical, underlying
 from ..mechanics import registry
 from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
@@ -134,6 +135,8 @@ def record_entries(spec, base: Path) -> dict:
             name = entry.get("name")
             if name is not None and not isinstance(name, str):
                 raise StudyError(f"{key}.name: expected a string, got {name!r}")
+            if "peer_scale" in entry:  # as a download's search results give it: a factor > 0
+                number(entry["peer_scale"], f"{key}.peer_scale", positive=True)
             items = [(name or _entry_name(entry["file"], f"{key}.file", base)[0][0], entry)]
         else:
             items = _entry_name(entry, key, base)
@@ -287,6 +290,12 @@ class Study:
         structure = (problems.check("structure", _structure, config.get("structure"), axes, slider)
                      if axes is not None and slider is not None else None)
         bounds = problems.check("structure", _bounds, config.get("structure"), axes) if axes is not None else None
+        if (excitation is not None and structure is None and not problems.failed("structure")
+                and any(has_vertical(e) for e in ({**records, "": excitation}).values())):
+            problems.add("excitation", "sweep.record: the records' vertical components act on an isolated structure's "
+                                       "normal force (structure); the imposed ground displacement (no structure) "
+                                       "would ignore them: give structure, or drop their vertical"
+                         if records else VERTICAL_WITHOUT_STRUCTURE)
         options = problems.check("newton", newton_from, config.get("newton"))
         policy = problems.check("on_failure", choice, given["on_failure"], "on_failure", FAILURE_POLICIES)
         theta2_0 = problems.check("theta2_0", number, given["theta2_0"], "theta2_0")
@@ -569,6 +578,11 @@ def _bounds(value, axes) -> dict:
     given = given or {}
     check_keys(given, "structure.property", (), ("lower", "upper"))
     bounds = {"nominal": 1.0, **{k: number(v, f"structure.property.{k}", positive=True) for k, v in given.items()}}
+    for label, side in (("lower", "above"), ("upper", "below")):
+        if label in bounds and (bounds[label] > 1.0 if label == "lower" else bounds[label] < 1.0):
+            raise StudyError(f"structure.property.{label}: {bounds[label]!r} is {side} the nominal 1: the {label} "
+                             f"bound's factor is λ_{'min' if label == 'lower' else 'max'} "
+                             f"{'<=' if label == 'lower' else '>='} 1 (EN 15129, ASCE 7-22 17.2.8.4)")
     for i, label in enumerate(axes.get("property", [])):
         if label not in bounds:
             raise StudyError(f"sweep.property[{i}]: {str(label)!r} needs its factor, structure.property.{label} (the "
