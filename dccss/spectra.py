@@ -114,6 +114,32 @@ def spectral_acceleration(excitation, period, damping=0.05, definition="rotd50",
     raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
 
 
+#: the intensity measures a record is scaled to (``intensity_measure``): its spectral acceleration at a period,
+#: its peak ground acceleration or velocity (a pair's by the definition, as its spectral acceleration)
+MEASURES = ("sa", "pga", "pgv")
+
+
+def intensity_measure(excitation, measure="sa", period=None, damping=0.05, definition="rotd50") -> float:
+    """A record's (or a pair's) intensity in SI units: ``sa`` its spectral acceleration at ``period`` (m/s²,
+    ``spectral_acceleration``), ``pga`` its peak ground acceleration (m/s²), ``pgv`` its peak ground velocity
+    (m/s), over its samples; a pair's by ``definition``: the 50th or 100th percentile over the orientations
+    0-179° of the peak of its components turned by each (RotD50, RotD100, as NGA-West2 takes a pair's PGA and
+    PGV too) or the geometric mean of its components' peaks."""
+    if measure not in MEASURES:
+        raise ValueError(f"measure must be one of {list(MEASURES)}, got {measure!r}")
+    if measure == "sa":
+        return spectral_acceleration(excitation, period, damping, definition)
+    if definition not in PAIR_DEFINITIONS:
+        raise ValueError(f"definition must be one of {list(PAIR_DEFINITIONS)}, got {definition!r}")
+    samples = "acceleration" if measure == "pga" else "velocity_samples"
+    if excitation.components == 1:
+        return float(np.max(np.abs(getattr(excitation, samples))))
+    x, y = (getattr(c, samples) for c in (excitation.x, excitation.y))
+    if definition == "geometric_mean":
+        return float(np.sqrt(np.max(np.abs(x)) * np.max(np.abs(y))))
+    return float(np.percentile(orientation_peaks(np.column_stack([x, y])), float(definition[4:])))
+
+
 def spectrum(excitation, periods, damping=0.05, definition="rotd50") -> np.ndarray:
     """``spectral_acceleration`` (m/s²) of ``excitation`` at each of ``periods`` (s): compiled (the same
     values) when the periods' work together is large, as a run's steps (``mechanics.backend``)."""

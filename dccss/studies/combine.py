@@ -35,6 +35,8 @@ def study_attrs(study, model=None, record=None) -> dict:
             ground = {**study.records[record].attrs(), "record": record}
     else:
         ground = study.excitation.attrs()
+    if study.intensity is not None:
+        ground.update(study.intensity.attrs())
     out = global_attrs(f"dccss study {study.name}", f"study {study.name}", study=study.name, normals=study.normals,
                        theta2_0_deg=study.theta2_0, capacity_policy=study.capacity,
                        on_failure=study.options.on_failure, symmetric=int(study.symmetric),
@@ -91,12 +93,47 @@ def combine(study, chunks: dict) -> xr.Dataset:
         per_model.append(xr.Dataset(variables))
     coords = {name: axis_variable((name,), name, vals) for name, vals in study.axes.items()}
     coords["model"] = xr.Variable(("model",), np.array(study.models, dtype=object), {"long_name": "kinematic model"})
+    if study.intensity is not None:  # the levels in the file's units: g, or m/s
+        unit, what = study.intensity.unit(), study.intensity.label(study.excitation.components == 2)
+        coords["intensity"] = xr.Variable(("intensity",), np.asarray(study.axes["intensity"], dtype=float), {
+            "units": "1" if unit == "g" else "m s-1",
+            "long_name": f"sweep axis intensity: the level of {what}" + (", in g (9.80665 m s-2)" if unit == "g"
+                                                                          else ", in m/s")})
     out = xr.concat(per_model, dim="model").assign_coords(coords)
+    if study.intensity is not None:
+        out = out.assign(intensity_levels(study))
     if study.records:
         out = out.assign(record_peaks(study)).merge(statistics(out))
     if "property" in study.axes:
         out = out.assign(envelope(out))
     out.attrs = study_attrs(study)
+    return out
+
+
+def intensity_levels(study) -> dict:
+    """Each record's intensity as read (``record_intensity``, SI), and at each level the factor it runs at
+    (``intensity_factor``) and the intensity it then has, measured on the record read at that factor
+    (``intensity_achieved``, in the levels' units)."""
+    from ..excitation import underlying
+    from ..spectra import intensity_measure
+
+    i, levels = study.intensity, np.asarray(study.axes["intensity"], dtype=float)
+    names = list(study.records) or [None]
+    factors = np.array([[study.intensity_factor(name, level) for level in levels] for name in names])
+    achieved = np.array([[intensity_measure(underlying(study.excitation_at(name, f)), i.measure, i.period, i.damping,
+                                            i.definition) / i.to_si for f in row] for name, row in zip(names, factors)])
+    dims = ("record", "intensity") if study.records else ("intensity",)
+    shape = (lambda a: a) if study.records else (lambda a: a[0])
+    what = i.label(study.excitation.components == 2)
+    si = "m s-2" if i.measure != "pgv" else "m s-1"
+    out = {"intensity_factor": xr.Variable(dims, shape(factors), {
+               "units": "1", "long_name": f"the factor the record runs at to reach the level of {what}"}),
+           "intensity_achieved": xr.Variable(dims, shape(achieved), {
+               "units": "1" if i.measure != "pgv" else "m s-1",
+               "long_name": f"{what} of the record as it runs (read at its factor), in the levels' units"})}
+    if study.records:
+        out["record_intensity"] = xr.Variable(("record",), np.array([study.record_intensity[n] for n in names]), {
+            "units": si, "long_name": f"{what} of the record as read (at scale 1)"})
     return out
 
 
@@ -237,7 +274,8 @@ def statistics(ds) -> xr.Dataset:
     ok = ~failed
     for name, var in ds.data_vars.items():
         # flags, the records' own data and event times (NaN where the event did not happen) are no demand
-        flag = name in ("failed", "capacity_exceeded") or name.startswith("record_") or name.endswith("_time")
+        flag = (name in ("failed", "capacity_exceeded") or name.startswith(("record_", "intensity_"))
+                or name.endswith("_time"))
         if flag or "record" not in var.dims or not np.issubdtype(var.dtype, np.floating):
             continue
         counted = xr.ones_like(ok) if name in {**STRUCTURE_SUMMARIES, **VERTICAL_SUMMARIES, **SURFACE_SUMMARIES} else ok

@@ -66,6 +66,25 @@ class Grid:
         name = self.record_of(cases)
         return self.study.excitation if name is None else self.study.records[name]
 
+    def factors(self, cases) -> np.ndarray | None:
+        """The factor each case's record is scaled by to its intensity level (``studies.intensity``), None
+        without intensity levels."""
+        if "intensity" not in self.axes:
+            return None
+        values = self.values(cases)
+        records = values["record"] if "record" in values else [None] * len(cases)
+        return np.array([self.study.intensity_factor(None if r is None else str(r), level)
+                         for r, level in zip(records, values["intensity"])])
+
+    def excitations(self, cases) -> list:
+        """The excitation of each case: its record (or the study's) at its intensity level's factor, read as ``dccss
+        run`` reads it; the one shared excitation for each case without intensity levels."""
+        factors = self.factors(cases)
+        if factors is None:
+            return [self.excitation(cases)] * len(cases)
+        record = self.record_of(cases)
+        return [self.study.excitation_at(record, f) for f in factors]
+
     def values(self, cases) -> dict:
         """{axis: its value for each case}."""
         idx = np.unravel_index(np.asarray(cases), self.shape)
@@ -162,7 +181,8 @@ class Grid:
         excitation, values = self.excitation(cases), self.values(cases)
         out = np.zeros((len(t), len(cases), excitation.components))
         responses, parameters = [], self.own(cases, excitation)
-        for i, (mine, device) in enumerate(zip(self.structures(cases), self.pendulums(cases))):
+        for i, (mine, device, motion) in enumerate(zip(self.structures(cases), self.pendulums(cases),
+                                                        self.excitations(cases))):
             own = {k: v[i] for k, v in parameters.items()}
             scale = float(values["scale"][i]) if "scale" in values else 1.0
             # a swept scale is the record's: its vertical's too, by its size (a negative scale mirrors the horizontal
@@ -170,7 +190,7 @@ class Grid:
             factor = scale
             if "component" in values:
                 factor = factor * np.array([values["component"][i] != "y", values["component"][i] != "x"], float)
-            ground = excitation.ground_acceleration(**own).scaled(factor, vertical=abs(scale))
+            ground = motion.ground_acceleration(**own).scaled(factor, vertical=abs(scale))
             response = structure.respond(ground, t, device, mine)
             out[:, i] = 0.0 - response.stroke
             responses.append(response)
@@ -182,7 +202,11 @@ class Grid:
         result, ``component`` keeps x, y or both."""
         excitation, values = self.excitation(cases), self.values(cases)
         own = self.own(cases, excitation)
-        Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
+        if "intensity" in self.axes:  # each case its record at its level's factor
+            Xg = np.stack([e.displacement(t, **{k: v[i] for k, v in own.items()})
+                           for i, e in enumerate(self.excitations(cases))], axis=1)
+        else:
+            Xg = excitation.displacement(t[:, None], **own) if own else excitation.displacement(t)[:, None]
         scale = values.get("scale", np.ones(len(cases)))
         if excitation.components == 1:
             return np.broadcast_to(Xg, (len(t), len(cases))) * scale

@@ -165,6 +165,8 @@ def history_mapping(study, i, model) -> dict:
     for key in (*study.excitation.parameters, "scale", "azimuth", "component"):
         if key in point:
             excitation[key] = point[key]
+    if "intensity" in point:  # the record at its level's factor
+        excitation["scale"] = study.intensity_factor(point.get("record"), point["intensity"])
     mapping = {"id": f"{study.name}/history{i}_{model}", "prototype": full, "excitation": excitation,
                "theta2_0": point.get("theta2_0", study.theta2_0), "dt": point.get("dt", study.dt), "model": model,
                "normals": study.normals, "newton": {"tol": study.options.tol, "max_iter": study.options.max_iter},

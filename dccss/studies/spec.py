@@ -32,8 +32,9 @@ from ..mechanics.structure import SLIDERS, Structure, StructureError
 from ..paper.prototypes import TABLE1
 from ..schema import errors as schema_errors
 from ..schema import schema
-from ..spectra import suite_factors
+from ..spectra import cached_spectrum, intensity_measure, suite_factors
 from .grid import CATEGORICAL, PLATE3_FOLLOWS, Grid
+from .intensity import Intensity, intensity_from
 
 #: what a study may sweep (the excitation's own parameters: see ``Sine.parameters``); ``azimuth``
 #: (degrees) turns a one-component excitation into bidirectional motion along it, ``component``
@@ -44,7 +45,7 @@ EXCITATION_AXES = ("amplitude", "omega", "scale", "azimuth", "rotation", "compon
 STRUCTURE_AXES = ("friction", "damping", "property", "slider")
 #: the friction's bounds a ``property`` axis takes (``structure.property`` gives lower's and upper's factors)
 BOUNDS = ("lower", "nominal", "upper")
-AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt")
+AXES = ("record", "prototype") + PARAMETERS + EXCITATION_AXES + STRUCTURE_AXES + ("theta2_0", "dt", "intensity")
 #: the keys of a study file and those it must have: dccss/schemas/study.schema.yaml, which the workflow
 #: checks a study against as well
 KEYS = set(schema("study")["properties"])
@@ -236,6 +237,49 @@ class Study:
     bounds: dict = field(default_factory=lambda: {"nominal": 1.0})  # property axis label -> the friction's factor λ
     records: dict = field(default_factory=dict)  # a record axis: name -> its excitation (processed once)
     record_entries: dict = field(default_factory=dict)  # name -> its file or pair [x, y], as in the study file
+    intensity: Intensity | None = None  # the measure of an intensity axis (``studies.intensity``)
+
+    @cached_property
+    def record_intensity(self) -> dict:
+        """{record name (None for the study's own excitation): its intensity (SI) as processed at scale 1}, where
+        the study has intensity levels."""
+        if self.intensity is None:
+            return {}
+        i = self.intensity
+        out = {}
+        for name, excitation in (self.records or {None: self.excitation}).items():
+            record = underlying(excitation)
+            if i.measure == "sa":
+                value = float(cached_spectrum(record, [i.period], i.damping, i.definition)[0])
+            else:
+                value = intensity_measure(record, i.measure, definition=i.definition)
+            if not value > 0:
+                raise StudyError(f"sweep.intensity: the intensity of record {name!r} is {value!r}: it cannot be "
+                                 f"scaled to a level")
+            out[name] = value
+        return out
+
+    def intensity_factor(self, record, level) -> float:
+        """The factor that scales ``record`` (its name; None for the study's own) to ``level`` (g, or m/s)."""
+        return float(level) * self.intensity.to_si / self.record_intensity[record]
+
+    def excitation_at(self, record, factor):
+        """The excitation of ``record`` (None: the study's own) read at scale ``factor``: as ``dccss run`` reads it
+        with that scale (processed once per record and factor)."""
+        cache = self.__dict__.setdefault("_scaled", {})
+        key = (record, float(factor))
+        if key not in cache:
+            spec = {**self.excitation_spec, "scale": float(factor)}
+            if record is None:
+                found = _swept_excitation(excitation_from(spec, self.base, geometry_from(self.prototype)), self.axes,
+                                          spec)
+            else:
+                found = _record_excitation(record, self.record_entries[record], spec, self.axes, self.base,
+                                           geometry_from(self.prototype))
+            if len(cache) > 64:  # a chunk's records at its levels; a long suite's others dropped
+                cache.clear()
+            cache[key] = found
+        return cache[key]
 
     @cached_property
     def grid(self) -> Grid:
@@ -289,6 +333,13 @@ class Study:
         slider = problems.check("slider", slider_from, given["slider"])
         structure = (problems.check("structure", _structure, config.get("structure"), axes, slider)
                      if axes is not None and slider is not None else None)
+        intensity = None
+        if axes is not None and geometry is not None:
+            swept_device = any(k in axes for k in ("prototype", *PARAMETERS))
+            intensity = problems.check("intensity", intensity_from, config.get("intensity"), axes,
+                                       None if swept_device else float(geometry.L))
+            if intensity is not None:
+                problems.check("sweep", _levels_alone, config, axes)
         bounds = problems.check("structure", _bounds, config.get("structure"), axes) if axes is not None else None
         if (excitation is not None and structure is None and not problems.failed("structure")
                 and any(has_vertical(e) for e in ({**records, "": excitation}).values())):
@@ -317,7 +368,8 @@ class Study:
                     normals=normals, axes=axes, chunk_size=chunk_size, capacity=capacity,
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
                     base=base, structure=structure, bounds=bounds, records=records,
-                    record_entries=record_entries(config["sweep"]["record"], base) if records else {})
+                    record_entries=record_entries(config["sweep"]["record"], base) if records else {},
+                    intensity=intensity)
         study.marks = marks
         _check_grid(study.grid)
         _check_frictions(study.grid)
@@ -326,6 +378,23 @@ class Study:
             animate = _animations(config.get("animate", []), histories, axes)
         study.histories, study.animate = histories, animate
         return study
+
+
+def _levels_alone(config, axes):
+    """An intensity axis scales recorded motions, by the factors its levels give: no other scale multiplies them
+    (a scale axis, the excitation's scale, a record's own or PEER's factor)."""
+    spec, why = config["excitation"], "the intensity levels set each record's factor"
+    if spec.get("kind") != "record":
+        raise StudyError(f"sweep.intensity: scales recorded ground motions (excitation kind: record) to levels of an "
+                         f"intensity measure; a {spec.get('kind')} is scaled by sweep.scale")
+    if "scale" in axes:
+        raise StudyError(f"sweep.scale: {why}; a scale axis would multiply them: give one of the two")
+    if "scale" in spec:
+        raise StudyError(f"excitation.scale: {why}; drop the excitation's scale (the records run as read, times the "
+                         f"level's factor)")
+    for i, entry in enumerate(config["sweep"].get("record", [])):
+        if isinstance(entry, dict) and "scale" in entry:
+            raise StudyError(f"sweep.record[{i}].scale: {why}; drop the record's own scale")
 
 
 def _device(proto, known):
