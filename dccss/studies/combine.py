@@ -12,6 +12,7 @@ from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
 from ..mechanics.structure import SURFACE_SUMMARIES, VERTICAL_SUMMARIES, G
 from ..mechanics.summaries import model_specific, specs
 from ..results import global_attrs, variable
+from .fragility import fragility
 from .spec import entry_files
 
 
@@ -106,6 +107,8 @@ def combine(study, chunks: dict) -> xr.Dataset:
         out = out.assign(record_peaks(study)).merge(statistics(out))
     if "property" in study.axes:
         out = out.assign(envelope(out))
+    if study.limits:
+        out = out.assign(fragility(out, study.limits, out["intensity"].attrs["units"]))
     out.attrs = study_attrs(study)
     return out
 

@@ -28,11 +28,14 @@ from ..mechanics.capacity import CAPACITY_POLICIES
 from ..mechanics.geometry import ANGLES, PARAMETERS
 from ..mechanics.kinematics import NORMALS
 from ..mechanics.newton import FAILURE_POLICIES, NewtonOptions
-from ..mechanics.structure import SLIDERS, Structure, StructureError
+from ..mechanics.structure import SLIDERS, SURFACE_SUMMARIES, VERTICAL_SUMMARIES, Structure, StructureError
+from ..mechanics.structure import SUMMARIES as STRUCTURE_SUMMARIES
+from ..mechanics.summaries import specs
 from ..paper.prototypes import TABLE1
 from ..schema import errors as schema_errors
 from ..schema import schema
 from ..spectra import cached_spectrum, intensity_measure, suite_factors
+from .fragility import limits_from
 from .grid import CATEGORICAL, PLATE3_FOLLOWS, Grid
 from .intensity import Intensity, intensity_from
 
@@ -238,6 +241,7 @@ class Study:
     records: dict = field(default_factory=dict)  # a record axis: name -> its excitation (processed once)
     record_entries: dict = field(default_factory=dict)  # name -> its file or pair [x, y], as in the study file
     intensity: Intensity | None = None  # the measure of an intensity axis (``studies.intensity``)
+    limits: list | None = None  # the limit states whose fragility is fitted (``studies.fragility``)
 
     @cached_property
     def record_intensity(self) -> dict:
@@ -340,6 +344,13 @@ class Study:
                                        None if swept_device else float(geometry.L))
             if intensity is not None:
                 problems.check("sweep", _levels_alone, config, axes)
+        if "fragility" in config and (intensity is None and not problems.failed("intensity")):
+            problems.add("fragility", "fragility: is fitted on the stripes of intensity levels: sweep them "
+                                      "(sweep.intensity) or drop fragility")
+        limits = None
+        if intensity is not None and excitation is not None and not problems.failed("structure"):
+            limits = problems.check("fragility", limits_from, config.get("fragility"),
+                                    _summaries(structure, excitation, records, axes))
         bounds = problems.check("structure", _bounds, config.get("structure"), axes) if axes is not None else None
         if (excitation is not None and structure is None and not problems.failed("structure")
                 and any(has_vertical(e) for e in ({**records, "": excitation}).values())):
@@ -369,7 +380,7 @@ class Study:
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
                     base=base, structure=structure, bounds=bounds, records=records,
                     record_entries=record_entries(config["sweep"]["record"], base) if records else {},
-                    intensity=intensity)
+                    intensity=intensity, limits=limits)
         study.marks = marks
         _check_grid(study.grid)
         _check_frictions(study.grid)
@@ -378,6 +389,19 @@ class Study:
             animate = _animations(config.get("animate", []), histories, axes)
         study.histories, study.animate = histories, animate
         return study
+
+
+def _summaries(structure, excitation, records, axes) -> dict:
+    """{summary: whether the pad's run decides it} of a study's cases: the pad models', and its structure's
+    (a vertical's, each surface's) where it has them."""
+    out = dict.fromkeys(specs(), True)
+    if structure is not None:
+        out.update(dict.fromkeys(STRUCTURE_SUMMARIES, False))
+        if any(has_vertical(e) for e in ({**records, "": excitation}).values()):
+            out.update(dict.fromkeys(VERTICAL_SUMMARIES, False))
+        if "slider" in axes or structure.slider != "rigid":
+            out.update(dict.fromkeys(SURFACE_SUMMARIES, False))
+    return out
 
 
 def _levels_alone(config, axes):
