@@ -102,7 +102,22 @@ def _vertical(a) -> str:
             f"{a['structure_normal_ratio_min']:.3g}{lifted}")
 
 
+def _surfaces(ds) -> str:
+    """An articulated slider's history: each surface's largest displacement and the hinge's largest rotation."""
+    peaks = []
+    for j in (1, 3):
+        if f"stroke_{j}_x" in ds:
+            peak = float(np.max(np.hypot(ds[f"stroke_{j}_x"].values, ds[f"stroke_{j}_y"].values)))
+        else:
+            peak = float(np.max(np.abs(ds[f"stroke_{j}"].values)))
+        peaks.append(f"max |u_{j}| = {100 * peak:.3f} cm")
+    hinge = float(np.max(np.abs(ds["hinge_rotation"].values)))
+    return f"articulated slider, {_steps(ds.sizes['t'])}: {', '.join(peaks)}, max hinge rotation = {hinge:.3f} deg"
+
+
 def _kinematics(ds) -> str:
+    if ds.attrs.get("model") == "articulated":
+        return _surfaces(ds)
     if ds.attrs.get("motion") == "bidirectional":
         interp = max(float(np.nanmax(np.abs(ds[name].values))) for name in ds if name.startswith("I_"))
         return (f"{ds.attrs['model']}, bidirectional, {_steps(ds.sizes['t'])}: max tilt = "
@@ -129,6 +144,11 @@ def warnings_of(ds) -> list[str]:
         out.append(f"the pad reaches the retaining ring of {a['capacity_exceeded_plate']} at "
                    f"t = {a['capacity_exceeded_at_s']:.6g} s{moved} and passes it by up to "
                    f"{1e3 * a['capacity_exceeded_by_m']:.3g} mm (capacity: {a['capacity_policy']})")
+    for j, plate in ((1, "RB1"), (3, "RB3")):  # an articulated slider's halves, each at its own ring
+        if f"ring_{j}_reached_at_s" in a:
+            out.append(f"the half on surface {j} reaches the retaining ring of {plate} at t = "
+                       f"{a[f'ring_{j}_reached_at_s']:.6g} s and passes it by up to "
+                       f"{1e3 * a[f'ring_{j}_exceeded_by_m']:.3g} mm (capacity: {a.get('capacity_policy', 'continue')})")
     if "stopped_at_s" in a:
         out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "
                    f"({ds.sizes['t'] - 1} steps written)")
@@ -351,7 +371,8 @@ def main(argv=None) -> int:
     if not args.quiet:
         used = "numba: the spatial models are compiled" if ds.attrs.get("motion") == "bidirectional" \
             else backend.last
-        print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s (backend {used})")
+        how = "" if ds.attrs.get("model") == "articulated" else f" (backend {used})"  # no pad model ran
+        print(f"dccss: wrote {args.output} ({_summary(ds)}) in {time.perf_counter() - start:.2f} s{how}")
     return 0
 
 

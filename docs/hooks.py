@@ -238,13 +238,32 @@ def _examples():
          "`uplift_duration_s`, `uplift_count` and, under `capacity: stop`, `stopped_by`."):
             simulate(DFP1, Vertical(sine, VerticalSine(3.0, 40.0)), model="compliant", dt=0.01,
                      structure=Structure(friction=0.05)),
+        ("An articulated slider {#articulated}", "With `slider: articulated` and no structure: the imposed "
+         "displacement shared between the two surfaces, quasi-statically (one component, `friction: [mu1, mu3]`; "
+         "[The articulated slider](../explanation/articulated-slider.md)). Its `model` attribute is `articulated` "
+         "and it has none of the pad's variables (θ², the rise, the corners): each of its variables is listed. A "
+         "half that reaches its ring adds `ring_<j>_reached_at_s` and `ring_<j>_exceeded_by_m` (j = 1, 3), and "
+         "under `capacity: stop` or `error` `stopped_at_s` or `failure_time_s`."):
+            simulate(DFP1, sine, model="compliant", dt=0.01, slider="articulated", friction=[0.03, 0.06]),
+        ("An articulated slider under a structure", "With `slider: articulated` and a structure (`friction_on: "
+         "surfaces`): the structure's variables, without the device's one friction state `z`, and each surface's "
+         "friction state and coefficient; the ground displacement `Xg` beside the stroke. In two components every "
+         "vector gains `_x` and `_y`, and `theta_1`, `theta_3` become `tilt_1`, `tilt_3` (each half's tilt from the "
+         "vertical; `hinge_rotation` is then the angle between the halves, >= 0). A temperature law adds "
+         "`surface_temperature_1` and `surface_temperature_3`, a vertical component its variables above."):
+            simulate(DFP1, sine, model="compliant", dt=0.01,
+                     structure=Structure([0.03, 0.06], 0.0, "surfaces", slider="articulated")),
     }
+
+
+#: the examples whose variables are all listed (a dataset of its own kind), not only those not met before
+COMPLETE = ("An articulated slider {#articulated}",)
 
 
 def datasets_page() -> str:
     out, seen = [], set()
     for (title, what), ds in _examples().items():
-        names = [n for n in [*ds.coords, *ds.data_vars] if n not in seen]
+        names = [n for n in [*ds.coords, *ds.data_vars] if n not in seen or title in COMPLETE]
         attrs = [a for a in ds.attrs if a not in seen]
         seen.update(names, attrs)
         out += [f"## {title}", "", what, "", "| variable | dimensions | units | long name |", "|---|---|---|---|"]
@@ -268,14 +287,21 @@ def _summaries() -> list[str]:
            "A study's dataset (`results/studies/<name>/<name>.nc`) has a dimension `model` and one per sweep "
            "axis, and for each case:", "", "| variable | units | long name |", "|---|---|---|"]
     rows = {**summaries.specs(), **{f"{k} (bidirectional)": v for k, v in summaries.TILT_SUMMARIES.items()},
-            **structure.SUMMARIES, **{f"{k} (with a vertical)": v for k, v in structure.VERTICAL_SUMMARIES.items()}}
+            **structure.SUMMARIES, **{f"{k} (with a vertical)": v for k, v in structure.VERTICAL_SUMMARIES.items()},
+            **{f"{k} (comparing slider kinds)": v for k, v in structure.SURFACE_SUMMARIES.items()}}
     for name, (units, long_name) in rows.items():
         out.append(f"| `{name}` | {units} | {_cell(long_name)} |")
     out += ["", f"A `record` axis (a suite) adds, for every summary, `<name>_suite` with a `statistic` coordinate "
             f"({', '.join(f'`{s}`' for s in STATISTICS)}), and `record_pga`, `record_pgv`, `record_pgd`, "
             "`record_source`, `records_counted`, `records_failed`, `records_capacity_exceeded` (and, with a "
             "vertical, `records_uplift`) "
-            "([A real record or a suite](../how-to/records.md#record-suites)).", ""]
+            "([A real record or a suite](../how-to/records.md#record-suites)).", "",
+            "The summaries \"comparing slider kinds\" are there where a study has a `slider` axis or an articulated "
+            "slider: an articulated slider's from each surface's own history, the rigid slider's from its stroke, "
+            "its surfaces sliding in proportion (L_j / L of the stroke, no hinge rotation). The pad's summaries (θ², "
+            "the rise, the corners) are the rigid pad's models' and NaN for an articulated slider's cases, whose "
+            "`capacity_exceeded` and `capacity_time` say whether and when either half first reached its ring "
+            "([The articulated slider](../how-to/articulated-slider.md#a-study-comparing-slider-kinds)).", ""]
     return out
 
 

@@ -216,3 +216,27 @@ def test_plot_and_animate_an_articulated_history(tmp_path):
     assert "sections at" in line and (tmp_path / "a.png").stat().st_size > 10_000
     line = animate(path, tmp_path / "a.gif", max_frames=4)
     assert "shown as 4 frames" in line and (tmp_path / "a.gif").is_file()
+
+
+@pytest.mark.parametrize("structure", [False, True])
+def test_dccss_run_of_an_articulated_case_says_each_surface_and_its_ring(tmp_path, capsys, structure):
+    """dccss run writes and sums up an articulated history (each surface's peak, the hinge; it failed with
+    KeyError 'theta2' after writing), and warns of a half at its ring."""
+    import shutil
+
+    import yaml
+
+    from dccss import cli
+
+    shutil.copy("config/studies/records/synthetic.AT2", tmp_path / "r.AT2")
+    case = ({"prototype": "DFP1", "excitation": {"kind": "record", "file": "r.AT2", "scale": 2.2}, "dt": 0.01,
+             "model": "compliant", "slider": "articulated",
+             "structure": {"friction": [0.03, 0.06], "friction_on": "surfaces"}} if structure else
+            {**CASE, "slider": "articulated", "friction": [0.03, 0.06]})
+    (tmp_path / "case.yaml").write_text(yaml.safe_dump(case))
+    assert cli.main(["run", str(tmp_path / "case.yaml"), "-o", str(tmp_path / "out.nc")]) == 0
+    out = capsys.readouterr()
+    assert "articulated slider" in out.out and "max |u_1| = " in out.out and "max hinge rotation = " in out.out
+    assert "backend" not in out.out and "theta2" not in out.out
+    if structure:  # the lower surface passes its ring (see test_a_ring_reached_by_one_surface_alone...)
+        assert "dccss: warning: the half on surface 1 reaches the retaining ring of RB1 at t = 3.68 s" in out.err

@@ -77,8 +77,8 @@ def test_a_registered_model_runs_through_a_sweep_and_the_plots(rigid):
     rest = min(DFP1.ring_inner_x[0] - DFP1.A1, DFP1.ring_inner_x[1] - DFP1.A3)
     assert np.allclose(out["clearance_min"], rest, rtol=0, atol=1e-15) and not out["capacity_exceeded"].any()
     assert "sticking_rotation_max" not in out
-    assert plots._line("rigid", ["compliant", "rigid"]) == RIGID.line
-    assert plots._ordered(["rigid", "stick_slip", "compliant"]) == ["compliant", "stick_slip", "rigid"]
+    assert plots.model_line("rigid", ["compliant", "rigid"]) == RIGID.line
+    assert plots.ordered_models(["rigid", "stick_slip", "compliant"]) == ["compliant", "stick_slip", "rigid"]
 
 
 def test_unregistered_models_are_refused_with_the_registered_ones():

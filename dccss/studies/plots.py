@@ -99,13 +99,13 @@ def _styled(model):
     return model in REGISTRY and bool(REGISTRY[model].line)
 
 
-def _ordered(models):
+def ordered_models(models):
     """Model names in a fixed order: the registry's, then any other by name."""
     known = [m for m in REGISTRY if m in models]
     return known + sorted(m for m in models if m not in REGISTRY)
 
 
-def _line(model, models):
+def model_line(model, models):
     """Colour, line style and width of a model (the same in every panel and figure)."""
     if _styled(model):
         return REGISTRY[model].line
@@ -118,7 +118,7 @@ def _marker(model):
     return entry.marker if entry is not None and entry.marker else dict(marker="s", ms=5, mew=0.8)
 
 
-def _title(model):
+def model_title(model):
     return MODEL_TITLES.get(model, model)
 
 
@@ -187,7 +187,7 @@ def _legend_rows(groups, width):
     return rows
 
 
-def _complete(fig, title, caption, groups):
+def complete(fig, title, caption, groups):
     """The title over a legend at the top (a row per group of handles if one line is too long), the
     caption line at the bottom (laid out once and frozen when saved: ``drawing.save``)."""
     rows = _legend_rows(groups, fig.get_figwidth())
@@ -266,7 +266,7 @@ def histories(points: list, caption: str) -> Figure:
     """
     if not points:
         raise ValueError("histories: no history points to draw")
-    models = _ordered({m for _, runs in points for m in runs})
+    models = ordered_models({m for _, runs in points for m in runs})
     structure = any(has_structure(ds) for _, runs in points for ds in runs.values())
     rows, ncols = len(HISTORY_ROWS) + structure, min(len(points), POINTS_PER_ROW)
     blocks = -(-len(points) // POINTS_PER_ROW)
@@ -286,8 +286,8 @@ def histories(points: list, caption: str) -> Figure:
         lines += [Line2D([], [], color=STROKE_COLOUR, lw=1.2, label="$u_x$, stroke" if two else "$u$, stroke")]
         if two:
             lines.append(Line2D([], [], color=STROKE_COLOUR, lw=1.2, ls="--", label="$u_y$"))
-    lines += [Line2D([], [], **_line(m, models), label=_title(m)) for m in models]
-    return _complete(fig, "Time histories at the study's history points", caption, [lines, _event_handles(events)])
+    lines += [Line2D([], [], **model_line(m, models), label=model_title(m)) for m in models]
+    return complete(fig, "Time histories at the study's history points", caption, [lines, _event_handles(events)])
 
 
 def _share_time(col, ylabels, spatial=False):
@@ -353,7 +353,7 @@ def _history_column(col, label, runs, models):
                    for kind, time, _ in _events(runs[model]) if kind == "capacity")
     right = {slot for _, slot in rings[1::2]}
     for slot, model in enumerate(m for m in models if m in runs):
-        ds, style = runs[model], _line(model, models)
+        ds, style = runs[model], model_line(model, models)
         t = ds["t"].values
         for ax, (name, _, factor, _) in zip(col[1:], HISTORY_ROWS[1:]):
             ax.plot(t, factor * _history_values(ds, name), **style)
@@ -474,7 +474,7 @@ def _notes(ds, model):
         time = float(ds.attrs.get("failure_time_s", ds["t"].values[-1]))
         message = _failure_reason(str(ds.attrs.get("failure_message", "")))
         parts.append(f"solver failed at {time:.4g} s" + (f": {message}" if message else ""))
-    return [f"{_title(model)}: " + "; ".join(parts)] if parts else []
+    return [f"{model_title(model)}: " + "; ".join(parts)] if parts else []
 
 
 def _failure_reason(message):
@@ -523,7 +523,7 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     fixed = {n: size for n, size in fixed.items() if n != group}
     ds = ds.isel({name: 0 for name in fixed})
     ds = ds.sortby([name for name in drawn if not _categorical(ds, name)])
-    models = _ordered([str(m) for m in ds["model"].values])
+    models = ordered_models([str(m) for m in ds["model"].values])
     tilt = ds.attrs.get("excitation_components") == 2  # bidirectional: |θ²| is the pad axis's tilt
     variables = [(name, "max tilt of the pad" if tilt and name == "theta2_max_abs" else label, factor, unit)
                  for name, label, factor, unit in SUMMARY_VARIABLES
@@ -543,7 +543,7 @@ def maps(ds, marks: dict, caption: str) -> Figure:
     title = f"Study {ds.attrs.get('study', '')}: {what}"
     if fixed:
         title += "\n" + _fixed_note(ds, fixed)
-    return _complete(fig, title, caption, legend)
+    return complete(fig, title, caption, legend)
 
 
 #: how a summary's envelope over the friction's bounds is drawn (``combine.envelope``), and its legend
@@ -639,8 +639,8 @@ def _flag_labels(ds, models, dims):
     dims = [d for d in dims if d != "statistic"]
     total = int(np.prod([ds.sizes[d] for d in dims]))
     counts = [_flags(ds.isel(statistic=0) if suite else ds, m, *dims) for m in models]
-    cap = ", ".join(f"{_title(m)} {int(c.sum())}" for m, (c, _) in zip(models, counts))
-    fail = ", ".join(f"{_title(m)} {int(f.sum())}" for m, (_, f) in zip(models, counts))
+    cap = ", ".join(f"{model_title(m)} {int(c.sum())}" for m, (c, _) in zip(models, counts))
+    fail = ", ".join(f"{model_title(m)} {int(f.sum())}" for m, (_, f) in zip(models, counts))
     ended = " (on the bottom edge where capacity: error ended the case there)" \
         if str(ds.attrs.get("capacity_policy")) == "error" else ""
     if suite:
@@ -651,7 +651,7 @@ def _flag_labels(ds, models, dims):
 
 def _undefined(ax, label, model):
     ax.set_axis_off()
-    ax.text(0.5, 0.5, f"{label}:\nnot defined for {_title(model)}", ha="center", va="center",
+    ax.text(0.5, 0.5, f"{label}:\nnot defined for {model_title(model)}", ha="center", va="center",
             transform=ax.transAxes, color="0.4")
 
 
@@ -684,7 +684,7 @@ def _draw_maps(fig, columns, ds, drawn, marks, variables, rows, models, group=No
             ax.set_xlabel(_axis_label(ds, x))
             ax.set_ylabel(_axis_label(ds, y))
             # the model and the row's category, then the summary: the title stays within its map
-            ax.set_title(f"{', '.join([_title(model), *where.values()])}:\n{label}", fontsize=10)
+            ax.set_title(f"{', '.join([model_title(model), *where.values()])}:\n{label}", fontsize=10)
         if mesh is not None:
             fig.colorbar(mesh, ax=list(column), label=f"{label} ({unit})", shrink=0.9)
     cap_label, fail_label = _flag_labels(ds, models, [*drawn, group] if group else drawn)
@@ -804,7 +804,7 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
     for ax, (name, label, factor, unit) in zip(axs, variables):
         failures = []
         for model in (m for m in models if _defined(ds, name, m)):
-            style = _line(model, models)
+            style = model_line(model, models)
             for g, group in enumerate(groups):
                 sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
                 values = factor * sel[name].values
@@ -826,7 +826,7 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
         _scale(ax, "x", x_name, x)
         ax.set_xlabel(_axis_label(ds, x_name))
         _summary_axes(ax, ds, name, label, unit, models)
-    legend = [[Line2D([], [], **_line(m, models), **_marker(m), label=_title(m)) for m in models]]
+    legend = [[Line2D([], [], **model_line(m, models), **_marker(m), label=model_title(m)) for m in models]]
     if len(drawn) > 1:
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
@@ -875,7 +875,7 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
     for ax, (name, label, factor, unit) in zip(axs, variables):
         failures = []
         for model in (m for m in models if _defined(ds, name, m)):
-            style = _line(model, models)
+            style = model_line(model, models)
             for g, (group, offset) in enumerate(zip(groups, offsets)):
                 sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
                 values = factor * sel[name].values
@@ -905,7 +905,7 @@ def _draw_categories(axs, ds, drawn, marks, variables, models):
         _summary_axes(ax, ds, name, label, unit, models)
     envelope = [[Line2D([], [], color="0.3", **ENVELOPE_LOOK, label=ENVELOPE_LABEL)]] \
         if any(f"{name}_envelope" in ds for name, *_ in variables) else []
-    legend = [[Line2D([], [], ls="none", color=_line(m, models)["color"], **_marker(m), label=_title(m))
+    legend = [[Line2D([], [], ls="none", color=model_line(m, models)["color"], **_marker(m), label=model_title(m))
                for m in models]]
     if len(drawn) > 1:
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
@@ -945,7 +945,7 @@ def _scale(ax, which, name, values):
 
 def _summary_axes(ax, ds, name, label, unit, models):
     """Labels, title (saying for which models a variable is not defined), margins and grid."""
-    missing = [_title(m) for m in models if not _defined(ds, name, m)]
+    missing = [model_title(m) for m in models if not _defined(ds, name, m)]
     ax.set_ylabel(f"{label} ({unit})")
     ax.set_title(label + (f"\n(not defined for {', '.join(missing)})" if missing else ""), fontsize=10)
     ax.margins(y=0.18)
@@ -968,8 +968,8 @@ def convergence_table(ds, points) -> list[dict]:
     """
     rows = []
     for point, runs in points:
-        sticking = [m for m in _ordered(runs) if m in REGISTRY and REGISTRY[m].sticking]
-        plain = [m for m in _ordered(runs) if m in REGISTRY and not REGISTRY[m].sticking]
+        sticking = [m for m in ordered_models(runs) if m in REGISTRY and REGISTRY[m].sticking]
+        plain = [m for m in ordered_models(runs) if m in REGISTRY and not REGISTRY[m].sticking]
         if "dt" not in point or not sticking or not plain:
             continue
         comp, stick = runs[plain[0]], runs[sticking[0]]
