@@ -146,9 +146,10 @@ def warnings_of(ds) -> list[str]:
                    f"{1e3 * a['capacity_exceeded_by_m']:.3g} mm (capacity: {a['capacity_policy']})")
     for j, plate in ((1, "RB1"), (3, "RB3")):  # an articulated slider's halves, each at its own ring
         if f"ring_{j}_reached_at_s" in a:
+            policy = a.get("capacity_policy", "continue")
             out.append(f"the half on surface {j} reaches the retaining ring of {plate} at t = "
                        f"{a[f'ring_{j}_reached_at_s']:.6g} s and passes it by up to "
-                       f"{1e3 * a[f'ring_{j}_exceeded_by_m']:.3g} mm (capacity: {a.get('capacity_policy', 'continue')})")
+                       f"{1e3 * a[f'ring_{j}_exceeded_by_m']:.3g} mm (capacity: {policy})")
     if "stopped_at_s" in a:
         out.append(f"capacity: stop cut the history short at t = {a['stopped_at_s']:.6g} s "
                    f"({ds.sizes['t'] - 1} steps written)")

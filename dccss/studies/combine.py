@@ -99,7 +99,8 @@ def combine(study, chunks: dict) -> xr.Dataset:
         coords["intensity"] = xr.Variable(("intensity",), np.asarray(study.axes["intensity"], dtype=float), {
             "units": "1" if unit == "g" else "m s-1",
             "long_name": f"sweep axis intensity: the level of {what}" + (", in g (9.80665 m s-2)" if unit == "g"
-                                                                          else ", in m/s")})
+                                                                          else ", in m/s"),
+            "label": f"{what} ({unit})"})
     out = xr.concat(per_model, dim="model").assign_coords(coords)
     if study.intensity is not None:
         out = out.assign(intensity_levels(study))

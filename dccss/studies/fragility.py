@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 import xarray as xr
-from scipy.special import ndtr
+from scipy.special import log_ndtr, ndtri
 
 from ..checks import CaseError, check_keys, number
 
@@ -118,26 +118,39 @@ def fit(levels, exceeded, counted) -> tuple[float, float, str]:
     if high < low or (high == low and np.all((z[x == low] == 0) | (z[x == low] == n[x == low]))):
         return math.nan, math.nan, "separated"
     # start: least squares on the probits of the fractions (clipped off 0 and 1)
-    from scipy.special import ndtri
-
     f = np.clip((z + 0.5) / (n + 1.0), 1e-3, 1 - 1e-3)
     b, a = np.polyfit(x, ndtri(f), 1, w=np.sqrt(n))
     b = max(b, 1e-3)
+    X = np.column_stack([np.ones_like(x), x])
+    best = _loglikelihood(a, b, x, z, n)
     for _ in range(ITERATIONS):
         eta = a + b * x
-        p = np.clip(ndtr(eta), 1e-300, 1.0 - 1e-16)
-        phi = np.exp(-0.5 * eta * eta) / math.sqrt(2.0 * math.pi)
-        w = n * phi * phi / (p * (1.0 - p))
-        r = (z - n * p) / n / np.maximum(phi, 1e-300)  # working response's residual
-        X = np.column_stack([np.ones_like(x), x])
-        A = X.T @ (w[:, None] * X)
-        step = np.linalg.solve(A, X.T @ (w * r))
-        a, b = a + step[0], b + step[1]
-        if not (np.isfinite(a) and np.isfinite(b)) or b <= 0.0:
+        up, down = log_ndtr(eta), log_ndtr(-eta)  # ln p, ln (1 - p), without cancellation in the tails
+        log_phi = -0.5 * eta * eta - 0.5 * math.log(2.0 * math.pi)
+        w = n * np.exp(2.0 * log_phi - up - down)  # Fisher's weights n φ² / (p (1 - p))
+        score = X.T @ (z * np.exp(log_phi - up) - (n - z) * np.exp(log_phi - down))
+        try:
+            step = np.linalg.solve(X.T @ (w[:, None] * X), score)
+        except np.linalg.LinAlgError:
             return math.nan, math.nan, "separated"
-        if np.max(np.abs(step)) <= TOL * max(1.0, abs(a), abs(b)):
+        if np.max(np.abs(step)) <= TOL * max(1.0, abs(a), abs(b)):  # converged: the maximum
+            a, b = a + step[0], b + step[1]
             return math.exp(-a / b), 1.0 / b, "fitted"
+        for _ in range(60):  # halved until the likelihood grows (Fisher scoring's steps are ascent directions)
+            trial = _loglikelihood(a + step[0], b + step[1], x, z, n)
+            if b + step[1] > 0.0 and trial >= best:
+                break
+            step = 0.5 * step
+        else:
+            return math.nan, math.nan, "separated"
+        a, b, best = a + step[0], b + step[1], trial
     return math.nan, math.nan, "separated"
+
+
+def _loglikelihood(a, b, x, z, n) -> float:
+    """The binomial log-likelihood of Φ(a + b x) (its constant left out)."""
+    eta = a + b * x
+    return float(np.sum(z * log_ndtr(eta) + (n - z) * log_ndtr(-eta)))
 
 
 def fragility(ds, limits, units) -> dict:

@@ -36,7 +36,8 @@ BOUND_MARKERS = {"lower": "v", "nominal": "o", "upper": "^"}
 
 
 def _intensity_label(ds) -> str:
-    return ds["intensity"].attrs["long_name"].removeprefix("sweep axis intensity: the level of ")
+    """'Sa(T = 2.71 s, 5 %) (g)'."""
+    return ds["intensity"].attrs["label"]
 
 
 def _bounds(ds) -> list:
@@ -101,13 +102,14 @@ def fragility(ds, caption: str) -> Figure:
     bounds = _bounds(ds)
     columns = min(3, len(names))
     rows = -(-len(names) // columns)
-    fig, axs = new_figure((4.4 * columns + 0.4, 3.4 * rows + 1.2), rows, columns, squeeze=False)
+    fig, axs = new_figure((4.4 * columns + 0.4, 3.4 * rows + 1.2), rows, columns)
     levels = ds["intensity"].values.astype(float)
     grid = np.linspace(0.0, levels.max() * 1.05, 200)[1:]
-    notes = []
+    notes, per_model = [], False
     for ax, name in zip(axs.ravel(), names):
         prefix = f"fragility_{name}"
         drawn = models[:1] if _same_across_models(ds, f"{prefix}_exceeded") else models
+        per_model = per_model or len(drawn) > 1
         for model in drawn:
             style = model_line(model, models) if len(drawn) > 1 else dict(color="0.15")
             for bound in bounds:
@@ -153,8 +155,10 @@ def fragility(ds, caption: str) -> Figure:
     if len(bounds) > 1:
         handles.append([Line2D([], [], ls={"lower": ":", "upper": "--"}.get(b, "-"), marker=BOUND_MARKERS.get(b, "o"),
                                mfc="none", color="0.3", label=f"property = {b}") for b in bounds])
-    if len(models) > 1:
+    if per_model:
         handles.append([Line2D([], [], **model_line(m, models), label=model_title(m)) for m in models])
+    elif len(models) > 1:
+        handles.append([Line2D([], [], color="0.15", lw=1.6, label="the same under every model")])
     title = f"Study {ds.attrs.get('study', '')}: fragility over {ds.sizes['record']} records"
     if notes:
         title += "\n" + "; ".join(notes)

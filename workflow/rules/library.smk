@@ -45,7 +45,7 @@ def script_hash(name):
 
 COMPUTE_SOURCE = source_hash(exclude=NOT_COMPUTING)
 FIGURES_SOURCE = source_hash(include=("drawing.py", "paper/figures.py", "paper/specs.py"))
-STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py"))
+STUDY_PLOTS_SOURCE = source_hash(include=("drawing.py", "studies/plots.py", "studies/intensity_plots.py"))
 ANIMATION_SOURCE = source_hash(include=("drawing.py", "viewer.py", "animation.py", "plan.py"))
 VALIDATION_SOURCE = source_hash(include=("paper/validation.py",))
 

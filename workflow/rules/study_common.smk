@@ -90,6 +90,7 @@ def convergence_plot():
 def study_plots():
     names = ["maps"] + (["histories"] if STUDY.histories else []) + (["convergence"] if convergence_plot() else [])
     names += ["spectra"] if STUDY.suite_factor is not None else []  # a suite scaled over a period range
+    names += ["ida"] + (["fragility"] if STUDY.limits else []) if STUDY.intensity is not None else []
     files = [f"figures/studies/{STUDY.name}/{name}.{ext}" for name in names for ext in ("png", "pdf")]
     return files + ([f"figures/studies/{STUDY.name}/convergence.csv"] if convergence_plot() else [])
 

@@ -9,7 +9,7 @@ from _log import logged
 from dccss.drawing import save
 from dccss.files import write_text
 from dccss.results import load
-from dccss.studies import plots
+from dccss.studies import intensity_plots, plots
 
 with logged(snakemake.log[0]):
     params = snakemake.params
@@ -18,6 +18,10 @@ with logged(snakemake.log[0]):
     save(plots.maps(combined, params.marks, params.caption), out["maps.png"], out["maps.pdf"])
     if "spectra.png" in out:
         save(plots.spectra(combined, params.caption), out["spectra.png"], out["spectra.pdf"])
+    if "ida.png" in out:
+        save(intensity_plots.ida(combined, params.caption), out["ida.png"], out["ida.pdf"])
+    if "fragility.png" in out:
+        save(intensity_plots.fragility(combined, params.caption), out["fragility.png"], out["fragility.pdf"])
     if params.labels:
         runs = [{} for _ in params.labels]
         for path in snakemake.input.histories:

@@ -1,0 +1,242 @@
+"""Intensity levels, incremental dynamic analysis and fragility: each record scaled to its levels (the intensity
+it reaches, and a case against dccss run of the record at its factor), the lognormal fitted by maximum likelihood
+against an independent fit, the limit states and failed runs, the figures, and the mistakes a file can make."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+from scipy.optimize import minimize
+from scipy.stats import norm
+from suite_records import write_suite
+
+from dccss.case import case_from
+from dccss.excitation import underlying
+from dccss.spectra import intensity_measure
+from dccss.studies import Study, StudyError, combine, history_case, run_chunk
+from dccss.studies.fragility import fit
+
+LEVELS = [0.05, 0.12, 0.2, 0.3, 0.45]
+
+
+@pytest.fixture(scope="module")
+def suite(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("ida")
+    write_suite(folder / "records", 8)
+    write_suite(folder / "pairs", 3, pairs=True)
+    return folder
+
+
+def config(**changes):
+    base = {"study": {"name": "ida"}, "prototype": "DFP1", "excitation": {"kind": "record", "baseline": "linear"},
+            "dt": 0.02, "models": ["compliant"], "structure": {"friction": 0.05},
+            "sweep": {"record": ["records/*.AT2"], "intensity": LEVELS}}
+    return {**base, **changes}
+
+
+def _combined(study):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # dt 0.02 s divides no record's length here
+        return combine(study, {m: [run_chunk(study, m, k) for k in range(study.grid.n_chunks)] for m in study.models})
+
+
+@pytest.fixture(scope="module")
+def ida(suite):
+    study = Study.from_config(config(fragility=["ring", {"name": "stroke_20cm", "variable": "stroke_max_abs",
+                                                         "above": 0.2}]), suite)
+    return study, _combined(study)
+
+
+# --- the levels -------------------------------------------------------------------------------------------
+@pytest.mark.parametrize(("intensity", "pairs"), [
+    ({}, False), ({"measure": "pga"}, False), ({"measure": "pgv"}, False), ({"period": 1.0, "damping": 0.02}, False),
+    ({}, True), ({"definition": "rotd100"}, True), ({"definition": "geometric_mean", "measure": "pga"}, True),
+    ({"measure": "pgv", "definition": "rotd50"}, True)])
+def test_each_record_reaches_its_level_to_1e_9(suite, intensity, pairs):
+    """The intensity measured on the record as it runs (read at its factor) equals the level, relative 1e-9; the
+    default Sa is at the device's isolated period 2π sqrt(L/g), 5 %, RotD50."""
+    records = ["pairs/RSN1001_SYN0*.AT2"] if False else (
+        [[f"pairs/RSN{1001 + k}_SYN{k}000.AT2", f"pairs/RSN{1001 + k}_SYN{k}090.AT2"] for k in range(3)] if pairs
+        else ["records/*.AT2"])
+    study = Study.from_config(config(intensity=intensity, sweep={"record": records, "intensity": LEVELS},
+                                     models=["compliant"]), suite)
+    if not intensity:
+        assert study.intensity.period == pytest.approx(2 * math.pi * math.sqrt(1.8196 / 9.80665), rel=1e-4)
+    from dccss.studies.combine import intensity_levels
+
+    levels = intensity_levels(study)
+    achieved = levels["intensity_achieved"].values
+    assert np.max(np.abs(achieved / np.asarray(LEVELS)[None, :] - 1.0)) < 1e-9
+    # each record's own intensity, independently: its factor times it is the level
+    i = study.intensity
+    for r, name in enumerate(study.records):
+        own = intensity_measure(underlying(study.records[name]), i.measure, i.period, i.damping, i.definition)
+        assert levels["intensity_factor"].values[r] == pytest.approx(np.asarray(LEVELS) * i.to_si / own, rel=1e-12)
+
+
+def test_a_case_equals_dccss_run_of_its_record_at_its_factor_bit_for_bit(suite, ida):
+    """The case of record r at level x is the record read with scale = its factor, as a case file gives it: the
+    structure's peak and residual stroke and peak force, and the pad's peak tilt, to the last bit."""
+    study, ds = ida
+    name, level = "RSN1003_SYN2", 0.3
+    factor = float(ds["intensity_factor"].sel(record=name, intensity=level))
+    case = case_from({"prototype": "DFP1", "excitation": {"kind": "record", "file": f"records/{name}.AT2",
+                                                          "baseline": "linear", "scale": factor},
+                      "dt": 0.02, "model": "compliant", "structure": {"friction": 0.05}}, suite)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = case.run()
+    cell = ds.sel(model="compliant", record=name, intensity=level)
+    assert float(cell["stroke_max_abs"]) == run.attrs["structure_stroke_max_abs_m"]  # over the whole response
+    assert float(cell["shear_ratio_max_abs"]) == run.attrs["structure_shear_ratio_max_abs"]
+    assert float(cell["stroke_end"]) == float(run["stroke"].values[-1])
+    assert float(cell["theta2_max_abs"]) == float(np.max(np.abs(run["theta2"].values)))
+    assert float(cell["rise_max"]) == float(np.max(run["rise"].values))
+    # a history point at that level is that case file
+    point = Study.from_config(config(histories=[{"record": name, "intensity": level}]), suite)
+    assert history_case(point, 0, "compliant").excitation.attrs()["record_scale"] == factor
+
+
+# --- the fit ----------------------------------------------------------------------------------------------
+def _independent(levels, z, n):
+    """The maximum of the binomial likelihood by Nelder-Mead on (ln θ, ln β): another method than the library's
+    Fisher scoring."""
+    x = np.log(levels)
+
+    def nll(q):
+        theta, beta = np.exp(q)
+        p = np.clip(norm.cdf((x - math.log(theta)) / beta), 1e-300, 1 - 1e-16)
+        return -np.sum(z * np.log(p) + (n - z) * np.log1p(-p))
+
+    start = [float(np.mean(x)), math.log(0.3)]
+    best = minimize(nll, start, method="Nelder-Mead", options={"xatol": 1e-13, "fatol": 1e-15, "maxiter": 40000})
+    return np.exp(best.x)
+
+
+def test_the_fitted_median_and_dispersion_equal_an_independent_maximum_likelihood_fit(ida):
+    """θ and β of the study's own stripes against scipy's Nelder-Mead on the likelihood, relative 1e-6."""
+    _, ds = ida
+    fitted = 0
+    for name in ("ring", "stroke_20cm"):
+        sel = {"model": "compliant"}
+        z, n = (ds[f"fragility_{name}_{k}"].sel(sel).values for k in ("exceeded", "counted"))
+        if str(ds[f"fragility_{name}_fit"].sel(sel).values) != "fitted":
+            continue
+        theta, beta = _independent(np.asarray(LEVELS), z, n)
+        assert float(ds[f"fragility_{name}_median"].sel(sel)) == pytest.approx(theta, rel=1e-6)
+        assert float(ds[f"fragility_{name}_dispersion"].sel(sel)) == pytest.approx(beta, rel=1e-6)
+        fitted += 1
+    assert fitted >= 1, "no stripe data to fit: the levels miss the limits"
+
+
+def test_the_fit_on_drawn_stripes_recovers_the_curve_and_says_when_there_is_none():
+    rng = np.random.default_rng(7)
+    levels = np.linspace(0.05, 1.5, 20)
+    n = np.full(20, 40)
+    z = rng.binomial(n, norm.cdf(np.log(levels / 0.6) / 0.35))
+    theta, beta, status = fit(levels, z, n)
+    assert status == "fitted" and np.allclose([theta, beta], _independent(levels, z, n), rtol=1e-6)
+    assert abs(theta / 0.6 - 1) < 0.1 and abs(beta / 0.35 - 1) < 0.25
+    assert fit(levels, 0 * n, n)[2] == "none exceeded" and fit(levels, n, n)[2] == "all exceeded"
+    assert fit(levels, np.where(levels > 0.6, n, 0), n)[2] == "separated"
+    assert math.isnan(fit(levels, np.where(levels > 0.6, n, 0), n)[0])
+    assert fit([0.3], [2], [5])[2] == "one level"
+
+
+def test_a_failed_run_counts_as_what_it_is():
+    """A pad's run that reached the ring and then failed is exceeded; one that failed short of it is left out and
+    counted as such; the structure's own limits count every run."""
+    from dccss.studies.fragility import fragility
+
+    shape = (1, 3, 2)  # model, record, intensity
+    capacity = np.array([[[0, 1], [0, 0], [1, 1]]])
+    failed = np.array([[[0, 1], [0, 1], [0, 0]]])
+    stroke = np.array([[[0.1, 0.3], [0.1, 0.4], [0.2, 0.5]]])
+    ds = xr.Dataset({"capacity_exceeded": (("model", "record", "intensity"), capacity),
+                     "failed": (("model", "record", "intensity"), failed),
+                     "stroke_max_abs": (("model", "record", "intensity"), stroke, {"units": "m"})},
+                    coords={"model": ["compliant"], "intensity": [0.1, 0.2]})
+    assert ds["failed"].shape == shape
+    out = fragility(ds, [("ring", "capacity_exceeded", "flag", 0.0, True),
+                         ("big", "stroke_max_abs", "above", 0.25, False)], "1")
+    assert list(out["fragility_ring_exceeded"].values[0]) == [1, 2]
+    assert list(out["fragility_ring_counted"].values[0]) == [3, 2]  # record 1's failure short of the ring left out
+    assert list(out["fragility_ring_failed"].values[0]) == [0, 1]
+    assert list(out["fragility_big_exceeded"].values[0]) == [0, 3] and list(out["fragility_big_counted"].values[0]) \
+        == [3, 3]
+
+
+# --- mistakes ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize(("changes", "message"), [
+    ({"intensity": {"measure": "sa"}, "sweep": {"record": ["records/*.AT2"]}},
+     r"intensity: names the measure of the intensity levels, but the study has none"),
+    ({"sweep": {"record": ["records/*.AT2"], "intensity": [0.1, 0.0]}}, r"sweep.intensity\[1\]: a level is an "
+                                                                        r"intensity > 0, got 0.0"),
+    ({"sweep": {"record": ["records/*.AT2"], "intensity": [0.1], "scale": [1.0, 2.0]}},
+     r"sweep.scale: the intensity levels set each record's factor"),
+    ({"excitation": {"kind": "record", "scale": 2.0}}, r"excitation.scale: the intensity levels set each record's "
+                                                       r"factor"),
+    ({"sweep": {"record": [{"file": "records/RSN1001_SYN0.AT2", "scale": 2.0}], "intensity": [0.1]}},
+     r"sweep.record\[0\].scale: the intensity levels set each record's factor"),
+    ({"sweep": {"record": ["records/*.AT2"], "intensity": [0.1], "prototype": ["DFP1", "DFP2"]}},
+     r"intensity.period: the isolated period differs between the devices the study sweeps"),
+    ({"intensity": {"measure": "pgv", "period": 1.0}}, r"intensity.period: a spectral acceleration's \(measure: "
+                                                       r"sa\); pgv has none"),
+    ({"intensity": {"measure": "sv"}}, r"intensity.measure: must be one of \['sa', 'pga', 'pgv'\], got 'sv'"),
+    ({"fragility": ["ring_1"]}, r"fragility\[0\]: ring_1 needs the summary ring_1_reached, which this study does "
+                                r"not have"),
+    ({"fragility": ["collapse"]}, r"fragility\[0\]: unknown limit state 'collapse'"),
+    ({"fragility": [{"name": "big", "variable": "stroke_max", "above": 0.2}]},
+     r"fragility\[0\].variable: 'stroke_max' is not a summary of this study"),
+    ({"fragility": [{"name": "big", "variable": "stroke_max_abs"}]}, r"fragility\[0\]: give one of above"),
+    ({"fragility": ["ring"], "sweep": {"record": ["records/*.AT2"], "scale": [1.0]}},
+     r"fragility: is fitted on the stripes of intensity levels"),
+])
+def test_mistakes_are_named(suite, changes, message):
+    with pytest.raises(StudyError, match=message):
+        Study.from_config(config(**changes), suite)
+
+
+def test_a_sine_has_no_intensity_levels(suite):
+    with pytest.raises(StudyError, match=r"sweep.intensity: scales recorded ground motions"):
+        Study.from_config(config(excitation={"kind": "sine", "amplitude": 0.1, "omega": 3.0, "duration": 4.0},
+                                 sweep={"intensity": [0.1]}), suite)
+
+
+# --- the figures ------------------------------------------------------------------------------------------
+def test_the_ida_figure_draws_each_record_and_the_stripes_fractiles(ida):
+    from dccss.studies import intensity_plots
+
+    _, ds = ida
+    fig = intensity_plots.ida(ds, "caption")
+    ax = next(a for a in fig.axes if a.get_title().startswith("max |stroke u|"))
+    values = 100 * ds["stroke_max_abs"].sel(model="compliant").transpose("record", "intensity").values
+    lines = ax.get_lines()
+    for record in values:
+        assert any(np.array_equal(ln.get_xdata(), record) for ln in lines)
+    (median,) = [ln for ln in lines if ln.get_gid() == "p50"]
+    assert np.allclose(median.get_xdata(), np.percentile(values, 50, axis=0)) and list(median.get_ydata()) == LEVELS
+    assert ax.get_ylabel() == "Sa(T = 2.71 s, 5 %) (g)"
+
+
+def test_the_fragility_figure_draws_the_observed_fractions_and_the_fitted_curve(ida):
+    from dccss.studies import intensity_plots
+
+    _, ds = ida
+    fig = intensity_plots.fragility(ds, "caption")
+    for name in ("ring", "stroke_20cm"):
+        ax = next(a for a in fig.axes if a.get_title().startswith(f"{name}:"))
+        (observed,) = [ln for ln in ax.get_lines() if ln.get_gid() == "observed"]
+        z, n = (ds[f"fragility_{name}_{k}"].sel(model="compliant").values for k in ("exceeded", "counted"))
+        assert np.allclose(observed.get_ydata(), z / n)
+        fitted = [ln for ln in ax.get_lines() if ln.get_gid() == "fitted"]
+        theta = float(ds[f"fragility_{name}_median"].sel(model="compliant"))
+        if np.isfinite(theta):
+            (curve,) = fitted
+            assert np.interp(theta, curve.get_xdata(), curve.get_ydata()) == pytest.approx(0.5, abs=5e-3)
+        else:
+            assert fitted == []
