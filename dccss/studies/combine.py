@@ -166,6 +166,15 @@ def _cases(study, model, chunks) -> xr.Dataset:
     """A model's chunks as one dataset over the flattened sweep index (``case``), every case once."""
     grid = study.grid
     if study.records:  # chunks number their cases within their record
+        pieces = []
+        for chunk in chunks:  # a chunk of several records (``record_jobs``): a piece per record
+            if "case_record" in chunk:
+                for name in dict.fromkeys(chunk["case_record"].values.tolist()):
+                    piece = chunk.isel(case=np.nonzero(chunk["case_record"].values == name)[0])
+                    pieces.append(piece.drop_vars("case_record").assign_attrs(record=name))
+            else:
+                pieces.append(chunk)
+        chunks = pieces
         by_record = {name: [c for c in chunks if c.attrs.get("record") == name] for name in grid.records}
         parts = []
         for r, name in enumerate(grid.records):

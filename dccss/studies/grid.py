@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -16,6 +17,12 @@ CATEGORICAL = ("record", "prototype", "component", "property", "slider")
 #: with ``symmetric: true`` the plate-3 and cap-23 parameters follow those of plate 1 and cap 21
 PLATE3_FOLLOWS = {"R3": "R1", "alpha3": "alpha1", "alpha23": "alpha21", "hr3": "hr1", "hmin3": "hmin1",
                   "tr3": "tr1"}
+
+
+def record_group(name, jobs) -> int:
+    """The job (0 .. jobs - 1) a record falls in: its name's SHA-256 modulo ``jobs`` (stable across runs and
+    machines, and whatever the other records)."""
+    return int.from_bytes(hashlib.sha256(name.encode()).digest()[:8], "big") % jobs
 
 
 class Grid:
@@ -33,7 +40,17 @@ class Grid:
         # a record axis comes first: each record's cases are a block, chunked on its own
         self.records = list(self.axes["record"]) if "record" in self.axes else [None]
         self.per_record = self.n_cases // len(self.records)
-        self._chunks = [part for r in range(len(self.records)) for part in self._split(r)]
+        jobs = getattr(study, "record_jobs", None)
+        if jobs is None:
+            self._chunks = [part for r in range(len(self.records)) for part in self._split(r)]
+            self.groups = None
+        else:  # a chunk per group of records, by the hash of their names: a record's group is its own affair
+            members = {}
+            for r, name in enumerate(self.records):
+                members.setdefault(record_group(str(name), jobs), []).append(r)
+            self.groups = {g: [str(self.records[r]) for r in rs] for g, rs in sorted(members.items())}
+            self._chunks = [np.concatenate([r * self.per_record + np.arange(self.per_record) for r in rs])
+                            for _, rs in sorted(members.items())]
         self.n_chunks = len(self._chunks)
 
     def _split(self, r) -> list:
@@ -51,6 +68,13 @@ class Grid:
         if not 0 <= k < self.n_chunks:
             raise ValueError(f"chunk {k} outside 0..{self.n_chunks - 1}")
         return self._chunks[k]
+
+    def records_of(self, cases) -> list:
+        """The records (names, in the sweep's order) of cases; [None] without a record axis."""
+        if "record" not in self.axes:
+            return [None]
+        found = set(self.values(cases)["record"])
+        return [str(r) for r in self.records if r in found]
 
     def record_of(self, cases) -> str | None:
         """The record (its name) of cases that share one, None without a record axis."""

@@ -58,6 +58,7 @@ MAP_INCHES = (4.4, 3.2)  # width (with its colour bar: its title's first line fi
 MAP_MARGIN = 0.6  # the maps figure's margin beside its maps (inches)
 FAILURE_SPACING = 10.0  # points between the failure marks of different curves at one x
 ROTATE_FROM, SMALL_FROM = 8, 16  # categories beyond which their tick labels stand upright, then get smaller
+CATEGORY_INCHES = 0.2  # a panel's width per category beyond ROTATE_FROM of them (a suite's records)
 
 #: (summary variable, label, factor to plot units, plot unit)
 SUMMARY_VARIABLES = [
@@ -89,7 +90,7 @@ HISTORY_ROWS = [
 AXIS_SYMBOLS = {"record": "record", "amplitude": "$X_{g,max}$", "omega": "ω", "scale": "scale of $X_g$",
                 "theta2_0": "$θ^2(t_0)$", "dt": "Δt", "prototype": "prototype", "azimuth": "azimuth of $X_g$",
                 "rotation": "rotation of the pair", "component": "component of $X_g$", "friction": "friction μ",
-                "damping": "damping ζ", "slider": "slider"}
+                "damping": "damping ζ", "slider": "slider", "intensity": "intensity"}
 GEOMETRY_SYMBOLS = {"alpha": r"\alpha", "hmin": "h_{min}", "hr": "h_r", "tr": "t_r"}
 UNIT_TEXT = {"degree": "°", "rad s-1": "rad/s", "1": "", "s": "s", "m": "m"}
 
@@ -141,6 +142,8 @@ def _axis_unit(ds, name):
 
 
 def _axis_label(ds, name):
+    if "label" in ds[name].attrs:  # an intensity axis: its measure and unit
+        return ds[name].attrs["label"]
     unit = _axis_unit(ds, name)[1]
     symbol = _symbol(name)
     if name == "friction" and ds.attrs.get("structure_friction_on") == "surfaces":
@@ -536,7 +539,10 @@ def maps(ds, marks: dict, caption: str) -> Figure:
             f": statistics over its {records} records" if group == "statistic" else
             f" per {_symbol(group)}" if group else "")
     else:
-        fig, columns = _grid(len(variables), LINE_INCHES)
+        inches = LINE_INCHES
+        if kind == "categories" and ds.sizes[drawn[0]] > ROTATE_FROM:  # room for each category's label and marks
+            inches = (max(LINE_INCHES[0], CATEGORY_INCHES * ds.sizes[drawn[0]] + 1.0), LINE_INCHES[1] + 0.6)
+        fig, columns = _grid(len(variables), inches)
         draw = _draw_lines if kind == "lines" else _draw_categories
         legend = draw([column[0] for column in columns], ds, drawn, marks, variables, models)
         what = f"summaries against {_symbol(drawn[0])}" + (f" per {_symbol(drawn[1])}" if len(drawn) > 1 else "")
@@ -801,6 +807,7 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
     x_name = drawn[0]
     x = _plot_values(ds, x_name)
     groups = list(ds[drawn[1]].values) if len(drawn) > 1 else [None]
+    crowd = len(drawn) > 1 and drawn[1] == "record" and len(groups) > ROTATE_FROM  # a suite's many records
     for ax, (name, label, factor, unit) in zip(axs, variables):
         failures = []
         for model in (m for m in models if _defined(ds, name, m)):
@@ -808,6 +815,9 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
             for g, group in enumerate(groups):
                 sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
                 values = factor * sel[name].values
+                if crowd:  # each record a faint line, its flags counted in the legend, not marked point by point
+                    ax.plot(x, values, color=style["color"], lw=0.8, **SUITE_RECORDS, gid="record")
+                    continue
                 shape = {} if group is None else {"marker": GROUP_MARKERS[g % len(GROUP_MARKERS)]}
                 marker = dict(_marker(model), **shape)
                 ax.plot(x, values, **style, **marker, **(SUITE_RECORDS if f"{name}_suite" in ds else {}))
@@ -827,6 +837,12 @@ def _draw_lines(axs, ds, drawn, marks, variables, models):
         ax.set_xlabel(_axis_label(ds, x_name))
         _summary_axes(ax, ds, name, label, unit, models)
     legend = [[Line2D([], [], **model_line(m, models), **_marker(m), label=model_title(m)) for m in models]]
+    if crowd:
+        legend.append([Line2D([], [], color="0.4", lw=0.8, **SUITE_RECORDS, label=f"each of the {len(groups)} "
+                                                                                  f"records")])
+        cap_label, fail_label = _flag_labels(ds, models, drawn)
+        return legend + ([_suite_handles(bounds="property" in ds.dims)] if "statistic" in ds.coords else []) + [
+            [Line2D([], [], ls="none", label=f"{cap_label}; {fail_label}: counted, not marked point by point")]]
     if len(drawn) > 1:
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
@@ -848,6 +864,14 @@ def _suite_handles(bounds=False):
     """The legend of a suite's statistics (``bounds``: of the largest over the friction's bounds)."""
     return [Line2D([], [], color="0.3", **look, label=SUITE_LABELS[statistic] + (
         ", largest over the friction's bounds" if bounds else "")) for statistic, look in SUITE_LINES.items()]
+
+
+def _rsn(names):
+    """PEER's record sequence numbers of records named RSN<number>_<station> (a download's: ``dccss.peer``), where
+    each has one and they tell the records apart; else None."""
+    found = [re.match(r"RSN\d+", n) for n in names]
+    short = [m.group(0) for m in found if m]
+    return short if len(short) == len(names) and len(set(short)) == len(names) else None
 
 
 def _shortened(names, most=24):
@@ -930,7 +954,8 @@ def _category_ticks(ax, x, names, name_axis):
     many = len(names) > ROTATE_FROM
     rotation = 90 if many else (30 if name_axis == "record" else 0)
     small = {"fontsize": 7} if len(names) > SMALL_FROM else {}
-    ax.set_xticks(x, _shortened(names, 16 if many else 24), rotation=rotation,
+    labels = _rsn(names) if many and name_axis == "record" else None
+    ax.set_xticks(x, labels or _shortened(names, 16 if many else 24), rotation=rotation,
                   ha="center" if many else ("right" if name_axis == "record" else "center"), **small)
 
 

@@ -81,9 +81,28 @@ def _lifted_off(part, responses, study, model, points) -> dict:
 def run_chunk(study, model, k, progress=None) -> xr.Dataset:
     """Summaries of the cases of chunk k under ``model`` (dimension ``case``): one batch per step
     size; ``progress(done, total, cases, dt)`` is called after each step (for a log). A failure
-    that stops the study (``on_failure: error``) names the sweep point."""
+    that stops the study (``on_failure: error``) names the sweep point. A chunk of several records
+    (``record_jobs``) runs each record's cases as a chunk of its own would, one after the other: its
+    dataset holds each case's record (``case_record``) and the case's index within it."""
     grid = study.grid
     cases = grid.chunk(k)
+    records = grid.records_of(cases)
+    if len(records) > 1:
+        parts = []
+        for name in records:
+            mine = cases[grid.values(cases)["record"] == name]
+            part = _run_cases(study, model, mine, progress)
+            parts.append(part.assign(case_record=("case", np.full(mine.size, name, dtype=object), {
+                "long_name": "the record of the case (the chunk holds several)"})))
+        ds = xr.concat(parts, dim="case", combine_attrs="override")
+        ds.attrs = study_attrs(study, model)
+        return ds
+    return _run_cases(study, model, cases, progress)
+
+
+def _run_cases(study, model, cases, progress=None) -> xr.Dataset:
+    """``run_chunk`` of cases of one record (or of a study without a record axis)."""
+    grid = study.grid
     dts = grid.dt_of(cases)
     out = {}
     for dt in np.unique(dts):
@@ -108,7 +127,7 @@ def run_chunk(study, model, k, progress=None) -> xr.Dataset:
                                       options=study.options, times=times, capacity=study.capacity, progress=report)
             except (ConvergenceError, CapacityError) as err:
                 index = getattr(err, "index", None)
-                where = grid.point(cases_rigid[index[0]]) if index else f"of chunk {k}"
+                where = grid.point(cases_rigid[index[0]]) if index else "of the chunk"
                 raise type(err)(f"sweep point {where} ({model}): {err}") from None
         if not rigid.all():
             names = list(part) or [*specs(), *(TILT_SUMMARIES if study.excitation.components == 2 else {})]

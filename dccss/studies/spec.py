@@ -95,15 +95,15 @@ def axis_values(spec, key) -> np.ndarray:
 def sweep_spec(config: dict, models=None, record=None, suite_factor=None) -> dict:
     """The part of a study file that the sweep's results depend on: all but the description, the
     marks and the histories (and, with ``models``, only those models; with ``record``, one entry of
-    the ``record`` axis (``Study.record_entries``), only that record: what its jobs depend on, with
-    the ``suite_factor`` of a suite scaled over a period range (``Study.suite_factor``), which the
-    other records set)."""
+    the ``record`` axis (``Study.record_entries``) or a list of them, only those records: what their jobs
+    depend on, with the ``suite_factor`` of a suite scaled over a period range (``Study.suite_factor``),
+    which the other records set)."""
     spec = {k: v for k, v in config.items() if k not in NOT_SWEPT}
     spec["study"] = {"name": config["study"]["name"]}
     if models is not None:
         spec["models"] = list(models)
     if record is not None:
-        spec["sweep"] = {**config["sweep"], "record": [record]}
+        spec["sweep"] = {**config["sweep"], "record": record if isinstance(record, list) else [record]}
     if suite_factor is not None:
         scale = {**spec["excitation"]["scale"], "suite_factor": suite_factor}
         spec["excitation"] = {**spec["excitation"], "scale": scale}
@@ -230,6 +230,7 @@ class Study:
     normals: str
     axes: dict  # name -> values (ordered)
     chunk_size: int
+    record_jobs: int | None = None  # a suite's records spread over this many jobs per model (``Grid``)
     capacity: str = "continue"
     options: NewtonOptions = field(default_factory=NewtonOptions)
     base: Path = Path(".")
@@ -363,6 +364,7 @@ class Study:
         theta2_0 = problems.check("theta2_0", number, given["theta2_0"], "theta2_0")
         normals = problems.check("normals", choice, given["normals"], "normals", NORMALS)
         chunk_size = problems.check("chunk_size", _chunk_size, given["chunk_size"], axes or {})
+        record_jobs = problems.check("record_jobs", _record_jobs, config.get("record_jobs"), config, axes or {})
         capacity = problems.check("capacity", choice, given["capacity"], "capacity",
                                   CAPACITY_POLICIES)
         # the points below are on the axes a record axis completes: checked once the excitation has passed
@@ -376,7 +378,7 @@ class Study:
         study = cls(name=meta[0], description=meta[1], prototype=dict(proto),
                     prototypes={k: dict(v) for k, v in known.items()}, symmetric=symmetric, excitation=excitation,
                     excitation_spec=dict(config["excitation"]), theta2_0=theta2_0, dt=dt, models=list(models),
-                    normals=normals, axes=axes, chunk_size=chunk_size, capacity=capacity,
+                    normals=normals, axes=axes, chunk_size=chunk_size, record_jobs=record_jobs, capacity=capacity,
                     options=NewtonOptions(tol=options.tol, max_iter=options.max_iter, on_failure=policy),
                     base=base, structure=structure, bounds=bounds, records=records,
                     record_entries=record_entries(config["sweep"]["record"], base) if records else {},
@@ -695,6 +697,19 @@ def _check_frictions(grid):
         except StructureError as err:
             where = ", ".join(f"{k}={v}" for k, v in grid.point(i).items())
             raise StudyError(f"sweep point {where}: {err}") from None
+
+
+def _record_jobs(value, config, axes) -> int | None:
+    """The number of jobs per model a suite's records are spread over (None: a job per record)."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise StudyError(f"record_jobs: expected an integer >= 1, got {value!r}")
+    if "record" not in axes:
+        raise StudyError("record_jobs: spreads a suite's records over jobs; this study has no record axis")
+    if config.get("chunk_size", "auto") != "auto":
+        raise StudyError("record_jobs: a job then runs its records' cases together: leave chunk_size auto")
+    return value
 
 
 def _chunk_size(chunk, axes) -> int:

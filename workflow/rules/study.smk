@@ -1,13 +1,13 @@
 wildcard_constraints:
     study=STUDY.name,
     model="compliant|stick_slip",
-    chunk="[0-9]+|[A-Za-z0-9_.+-]+[.][0-9]+",
+    chunk="[0-9]+|[A-Za-z0-9_.+-]+[.][0-9]+|@[0-9]+",
     i="[0-9]+",
 
 
 rule study_chunk:
     input:
-        lambda w: study_files(chunk_record(w.chunk)),
+        lambda w: study_files(chunk_records(w.chunk)),
     output:
         "results/studies/{study}/chunks/{model}_{chunk}.nc",
     params:

@@ -24,21 +24,25 @@ def _paths(files):
     return [str(STUDY_FILE.parent / f) for f in ([files] if isinstance(files, str) else files)]
 
 
-def study_files(record=None):
+def study_files(records=None):
     """Files the study reads (a recorded or tabulated ground motion; with a record axis, those of
-    ``record``, or of every record; a target spectrum the records are scaled to): inputs of its jobs."""
+    ``records`` (a list of names), or of every record; a target spectrum the records are scaled to): inputs
+    of its jobs."""
     scale = STUDY.excitation_spec.get("scale")
     target = _paths(scale["target"]) if isinstance(scale, dict) and isinstance(scale.get("target"), str) else []
     if STUDY.records:
-        names = [record] if record else list(STUDY.record_entries)
+        names = records or list(STUDY.record_entries)
         return [p for name in names for p in _paths(entry_files(STUDY.record_entries[name]))] + target
     return _paths(STUDY.excitation_spec.get("file", [])) + target
 
 
 def chunk_label(k):
     """A chunk's name in its file: its number, or with a record axis '<record>.<number within it>'
-    (a record's jobs then do not change when other records are added or dropped)."""
+    (a record's jobs then do not change when other records are added or dropped), or with record_jobs
+    '@<group>' (a group of records, by their names' hash: it changes only when one of its records does)."""
     cases = STUDY.grid.chunk(k)
+    if STUDY.grid.groups is not None:
+        return f"@{sorted(STUDY.grid.groups)[k]}"
     record = STUDY.grid.record_of(cases)
     if record is None:
         return str(k)
@@ -46,17 +50,19 @@ def chunk_label(k):
     return f"{record}.{k - first}"
 
 
-def chunk_record(label):
-    """The record of a chunk label (None without a record axis)."""
-    return label.rsplit(".", 1)[0] if "." in label else None
+def chunk_records(label):
+    """The records of a chunk label (None without a record axis)."""
+    if label.startswith("@"):
+        return STUDY.grid.groups[int(label[1:])]
+    return [label.rsplit(".", 1)[0]] if "." in label else None
 
 
 def chunk_spec(wildcards):
-    """What a chunk's summaries depend on: its model's part of the study file, and only its record's
+    """What a chunk's summaries depend on: its model's part of the study file, and only its records'
     (and, for a suite scaled over a period range, the suite's factor, which all its records set)."""
-    record = chunk_record(wildcards.chunk)
-    return sweep_spec(config, [wildcards.model], None if record is None else STUDY.record_entries[record],
-                      STUDY.suite_factor)
+    records = chunk_records(wildcards.chunk)
+    return sweep_spec(config, [wildcards.model],
+                      None if records is None else [STUDY.record_entries[r] for r in records], STUDY.suite_factor)
 
 
 def chunk_files():

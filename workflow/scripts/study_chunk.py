@@ -11,7 +11,8 @@ from dccss.studies import Study, run_chunk
 with logged(snakemake.log[0]) as log:
     study = Study.from_config(snakemake.params.spec, Path(snakemake.params.study_dir))
     model, label = snakemake.wildcards.model, snakemake.wildcards.chunk
-    k = int(label.rsplit(".", 1)[-1])  # '<record>.<k>': the spec holds that record alone
+    # '<record>.<k>': the spec holds that record alone; '@<group>': that group's records, its only chunk
+    k = 0 if label.startswith("@") else int(label.rsplit(".", 1)[-1])
     cases = study.grid.chunk(k)
     print(f"{model}, chunk {label}: {len(cases)} cases")
     start, shown = time.monotonic(), [0.0]
