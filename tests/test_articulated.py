@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from dccss.mechanics.friction import COULOMB, LAWS, row, surface_mu, surface_mu_slopes
+from dccss.mechanics.friction import COULOMB, LAWS, RATIO, WEIGHT, row, surface_mu, surface_mu_slopes
 from dccss.mechanics.structure import G, Ground, Structure, StructureError, corner, respond
 from dccss.mechanics.structure.articulated import articulated_history, surfaces_alike
 from dccss.mechanics.structure.series import BOTH, SLIDE1, SLIDE3, STUCK, series_line_history
@@ -34,6 +34,16 @@ def _pair(scale=2.0):
 
 def _articulated(friction, damping=0.02, **kw):
     return Structure(friction, damping, "surfaces", slider="articulated", **kw)
+
+
+def _coulomb_rows(mu1, mu3):
+    """The kernel's rows of Coulomb surfaces of weight 1 (μ̄_j = μ_j), and the same laws as the rigid slider's (weight
+    and ratio L_j / L: both surfaces starting together from rest)."""
+    rows = np.array([row(COULOMB, {"mu": mu1}), row(COULOMB, {"mu": mu3})])
+    rigid = rows.copy()
+    rigid[:, WEIGHT] *= [L1 / L, L3 / L]
+    rigid[:, RATIO] *= [L1 / L, L3 / L]
+    return rows, rigid
 
 
 def _together(mu1):
@@ -233,11 +243,11 @@ def test_the_general_history_equals_the_exact_one_in_one_component():
     """Coulomb, unequal frictions, one component: the general kernel (DOP853 for one surface, Radau for both)
     equals the exact closed-form solution over the whole record, phase for phase."""
     rec = _record()
-    ground = Ground.from_samples(rec.time, rec.acceleration * G)
-    rows = np.array([row(COULOMB, {"mu": 0.03}), row(COULOMB, {"mu": 0.06})])
+    ground = Ground.from_samples(rec.time, rec.acceleration)
+    rows, rigid = _coulomb_rows(0.03, 0.06)
     u, v, u1, phase, force = series_line_history(ground.time, ground.a0[:, 0], ground.a1[:, 0], G / L1, G / L3,
                                                  math.sqrt(G / L), 0.02, 0.03 * G, 0.06 * G)
-    U, V, U1, _, PHASE, F, _, _ = articulated_history(ground, L1, L3, 0.02, rows, rows)
+    U, V, U1, _, PHASE, F, _, _ = articulated_history(ground, L1, L3, 0.02, rows, rigid)
     assert np.array_equal(phase, PHASE)
     assert np.max(np.abs(U[:, 0] - u)) < 1e-8 and np.max(np.abs(U1[:, 0] - u1)) < 1e-8
     assert np.all(U[:, 1] == 0.0)
@@ -290,9 +300,9 @@ def test_the_articulated_kernel_compiled_equals_interpreted():
     pair = _pair()
     n = 301
     ground = Ground.from_samples(pair.time[:n], pair.ground_acceleration().at(pair.time[:n]))
-    rows = np.array([row(COULOMB, {"mu": 0.03}), row(COULOMB, {"mu": 0.06})])
-    compiled = articulated_history(ground, L1, L3, 0.02, rows, rows, compiled=True)
-    interpreted = articulated_history(ground, L1, L3, 0.02, rows, rows, compiled=False)
+    rows, rigid = _coulomb_rows(0.03, 0.06)
+    compiled = articulated_history(ground, L1, L3, 0.02, rows, rigid, compiled=True)
+    interpreted = articulated_history(ground, L1, L3, 0.02, rows, rigid, compiled=False)
     for a, b in zip(compiled, interpreted, strict=True):
         assert np.array_equal(a, b)
     assert set(np.unique(compiled[4])) == {STUCK, SLIDE1, BOTH} | ({SLIDE3} & set(np.unique(compiled[4])))

@@ -240,3 +240,59 @@ def test_the_fragility_figure_draws_the_observed_fractions_and_the_fitted_curve(
             assert np.interp(theta, curve.get_xdata(), curve.get_ydata()) == pytest.approx(0.5, abs=5e-3)
         else:
             assert fitted == []
+
+
+# --- jobs of several records ------------------------------------------------------------------------------
+def test_records_spread_over_jobs_give_the_same_results_to_the_last_bit(suite):
+    """record_jobs 3 (a job per group of records, by their names' hash) against a job per record: the combined
+    dataset identical, its netCDF the same bytes."""
+    plain = _combined(Study.from_config(config(), suite))
+    study = Study.from_config(config(record_jobs=3), suite)
+    assert study.grid.n_chunks <= 3 and sum(len(g) for g in study.grid.groups.values()) == 8
+    grouped = _combined(study)
+    xr.testing.assert_identical(plain, grouped)
+
+
+def test_a_records_job_does_not_depend_on_the_others():
+    """A record's group is its name's hash modulo the number of jobs: the same whatever else is in the suite."""
+    from dccss.studies.grid import record_group
+
+    groups = [record_group(f"RSN{k}_X", 8) for k in range(200)]
+    assert set(groups) == set(range(8)) and record_group("RSN12_X", 8) == groups[12]
+
+
+@pytest.mark.slow
+def test_an_intensity_study_runs_through_snakemake_in_record_jobs_and_draws_its_figures(tmp_path):
+    """A suite at levels with bounds through the workflow: ida and fragility drawn, records in 3 jobs per model;
+    adding a record reruns its own job and the combination only."""
+    import re
+
+    import yaml
+    from conftest import copy_project, snakemake
+
+    work = copy_project(tmp_path)
+    names = write_suite(work / "config/studies/ida_records", 7)
+    study = work / "config/studies/ida.yaml"
+    spec = config(models=["compliant"], record_jobs=3, fragility=["ring"],
+                  structure={"friction": 0.05, "property": {"lower": 0.8, "upper": 1.3}},
+                  sweep={"record": [f"ida_records/{n}.AT2" for n in names[:6]], "intensity": LEVELS,
+                         "property": ["lower", "upper"]})
+    study.write_text(yaml.safe_dump(spec))
+    run = snakemake(work, "--configfile", "config/studies/ida.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    for name in ("ida", "fragility", "maps"):
+        assert (work / f"figures/studies/ida/{name}.png").is_file()
+    chunks = sorted(p.name for p in (work / "results/studies/ida/chunks").iterdir())
+    assert all(re.fullmatch(r"compliant_@[0-2]\.nc", c) for c in chunks) and len(chunks) <= 3
+    ds = xr.open_dataset(work / "results/studies/ida/ida.nc")
+    assert ds.sizes["record"] == 6 and "fragility_ring_median" in ds
+    # the seventh record: only its group's job runs again
+    from dccss.studies.grid import record_group
+
+    spec["sweep"]["record"].append(f"ida_records/{names[6]}.AT2")
+    study.write_text(yaml.safe_dump(spec))
+    run = snakemake(work, "results/studies/ida/ida.nc", "--configfile", "config/studies/ida.yaml")
+    assert run.returncode == 0, run.stderr[-3000:]
+    rerun = re.findall(r"^\s*output: results/studies/ida/chunks/(\S+)\.nc$", run.stdout + run.stderr, re.MULTILINE)
+    assert rerun == [f"compliant_@{record_group(names[6], 3)}"], rerun
+    assert xr.open_dataset(work / "results/studies/ida/ida.nc").sizes["record"] == 7

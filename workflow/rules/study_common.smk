@@ -26,12 +26,12 @@ def _paths(files):
 
 def study_files(records=None):
     """Files the study reads (a recorded or tabulated ground motion; with a record axis, those of
-    ``records`` (a list of names), or of every record; a target spectrum the records are scaled to): inputs
+    ``records`` (a name or a list of names), or of every record; a target spectrum the records are scaled to): inputs
     of its jobs."""
     scale = STUDY.excitation_spec.get("scale")
     target = _paths(scale["target"]) if isinstance(scale, dict) and isinstance(scale.get("target"), str) else []
     if STUDY.records:
-        names = records or list(STUDY.record_entries)
+        names = [records] if isinstance(records, str) else records or list(STUDY.record_entries)
         return [p for name in names for p in _paths(entry_files(STUDY.record_entries[name]))] + target
     return _paths(STUDY.excitation_spec.get("file", [])) + target
 

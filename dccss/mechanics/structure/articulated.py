@@ -35,7 +35,7 @@ from .circular import breakaway
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
 from .heat import plate_temperature
 from .inputs import G
-from .integrator import HELD, MOVING, NONE, REST_SPEED, STOP, TOO_SHORT, YIELD, integrate, law_coefficient
+from .integrator import CAPPED, HELD, MOVING, NONE, REST_SPEED, STOP, TOO_SHORT, YIELD, integrate, law_coefficient
 from .response import Response, Surfaces
 from .series import BOTH, SLIDE1, SLIDE3, STUCK, series_line_history
 from .sliders import SliderKind, register, ring_strokes
@@ -93,7 +93,10 @@ def _corner(wx, wy, ex, ey, m1, m3, L1, L3):
     c = min(1.0, max(-1.0, c))
     size = math.acos(c)
     if size == 0.0:
-        # z_1 = z_3 = -w / |w| (m1 > m3) or w / |w|; collinear with e where the phase is possible
+        # z_1 = z_3 = z = w / (m3 - m1) (any z where m1 = m3, w = 0): both slide where e is along z; against it
+        # the surface of the smaller friction slides alone (the other's circle lies beyond)
+        if m1 != m3 and (wx * ex + wy * ey) * (m3 - m1) < 0.0:
+            return (SLIDE1 if m1 < m3 else SLIDE3), 0.0, (1.0 if m1 < m3 else 0.0)
         return BOTH, 0.0, L1 / (L1 + L3)
     best, best_sigma, best_delta = -1.0, 0.0, 0.0
     for orientation in (1.0, -1.0):
@@ -192,8 +195,15 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                 tj, ti = (t1, t3) if lower else (t3, t1)
                 law = rows[0:1] if lower else rows[1:2]
                 other = rows[1:2] if lower else rows[0:1]
+                mm = max(m0, 0.0)
+                if starting and mm > 0.0:  # from rest: short of its friction by more than the state's accuracy, at rest
+                    fx, fy = -b00 / (g * mm) - (x0 - ix) / Lj, -b01 / (g * mm) - (x1 - iy) / Lj
+                    if math.sqrt(fx * fx + fy * fy) < device_mu(law, 0.0, mm, tj, tj) * (1.0 - RADAU_RTOL):
+                        w0, w1, state, starting = 0.0, 0.0, STUCK, False
+                        continue
                 load = (b00, b01, b10, b11, g / Lj, damp, g, m0, m1, tj, tj, ix / Li, iy / Li, ti)
-                ended, when, h_next = integrate(y4, end, h_next if not starting else 0.0, load, law, starting,
+                ended, when, h_next = integrate(y4, end, h_next if not starting else 0.0, load, law,
+                                                CAPPED if starting else 0,
                                                 not starting, rtol, atol, A, B, C, E3, E5, K, out, trial, other)
                 if ended == TOO_SHORT:
                     return FAILED, k
@@ -241,8 +251,19 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                 # from rest together, or alike throughout: the rigid slider of the proportional split (from rest
                 # until |u̇| reaches START_SPEED)
                 y4[0], y4[1], y4[2], y4[3] = x0, x1, w0, w1
+                if starting:
+                    # from rest: where the force is short of the pair's friction by more than the state's accuracy
+                    # (a stop's state after Radau: RADAU_RTOL), at rest; a rounding short, the start holds
+                    # until it is not (CAPPED)
+                    mm = max(m0, 0.0)
+                    if mm > 0.0:
+                        fx, fy = -b00 / (g * mm) - x0 / L, -b01 / (g * mm) - x1 / L
+                        if math.sqrt(fx * fx + fy * fy) < device_mu(rigid_rows, 0.0, mm, t1, t3) * (1.0 - RADAU_RTOL):
+                            state, starting = STUCK, False
+                            continue
                 load = (b00, b01, b10, b11, g / L, damp, g, m0, m1, t1, t3, 0.0, 0.0, 0.0)
-                ended, when, h_next = integrate(y4, end, 0.0 if starting else h_next, load, rigid_rows, starting,
+                ended, when, h_next = integrate(y4, end, 0.0 if starting else h_next, load, rigid_rows,
+                                                CAPPED if starting else 0,
                                                 not starting, rtol, atol, A, B, C, E3, E5, K, out, trial,
                                                 rigid_rows[:0])
                 if ended == TOO_SHORT:

@@ -20,6 +20,8 @@ import numpy as np
 from .. import scalar
 from ..friction import device_mu
 
+#: a start from rest whose friction is at most the force (``_rhs``)
+CAPPED = 2
 #: a stop in two components: |u̇| (m/s) below which the structure is at rest
 REST_SPEED = 1e-9
 #: a start from rest in two components: the friction is along the force until |u̇| (m/s) reaches this
@@ -95,11 +97,14 @@ def demand(t, y, load):
 @scalar.jit
 def _rhs(t, y, row, K, load, law, start):
     """K[row] = dy/dt: u̇ and ü = f - 2ζω u̇ - μ g (N/W) z, z the direction of u̇ (of f for a ``start`` from
-    rest)."""
+    rest; a ``start`` of CAPPED takes the friction at most |f|: a slide from rest never starts against the
+    force, where its state puts the force a rounding short of the friction)."""
     f0, f1 = demand(t, y, load)
     friction = load[6] * law_coefficient(t, y, load, law) * normal_ratio(t, load)
     d0, d1 = (f0, f1) if start else (y[2], y[3])
     size = math.sqrt(d0 * d0 + d1 * d1)
+    if start == CAPPED and friction > size:
+        friction = size
     if size > 0.0:
         d0, d1 = d0 / size, d1 / size
     at = row * SIZE
@@ -255,10 +260,10 @@ def integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K,
             rejected = True
         crossed = (stop and _crosses(STOP, _g(STOP, t, y, load, law, start, other),
                                      _g(STOP, t_new, out, load, law, start, other)),
-                   start and _crosses(MOVING, _g(MOVING, t, y, load, law, start, other),
-                                      _g(MOVING, t_new, out, load, law, start, other)),
-                   start and _crosses(HELD, _g(HELD, t, y, load, law, start, other),
-                                      _g(HELD, t_new, out, load, law, start, other)),
+                   start != 0 and _crosses(MOVING, _g(MOVING, t, y, load, law, start, other),
+                                           _g(MOVING, t_new, out, load, law, start, other)),
+                   start != 0 and _crosses(HELD, _g(HELD, t, y, load, law, start, other),
+                                           _g(HELD, t_new, out, load, law, start, other)),
                    False, len(other) > 0 and _crosses(YIELD, _g(YIELD, t, y, load, law, start, other),
                                                       _g(YIELD, t_new, out, load, law, start, other)))
         first, length = NONE, taken
