@@ -18,7 +18,7 @@ from dccss.mechanics.structure import Structure, respond
 from dccss.paper.prototypes import DFP1
 from dccss.records import Record, RecordPair
 
-pytestmark = pytest.mark.slow  # 20 s records by implicit steps of a few microseconds: 5-35 s each
+pytestmark = pytest.mark.slow  # 20 s records by implicit steps of a few microseconds: 3-10 s each
 
 RECORDS = "config/studies/records"
 VELOCITY = [{"law": "velocity", "slow": 0.02, "fast": 0.04, "rate": 20.0},

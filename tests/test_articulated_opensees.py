@@ -44,7 +44,8 @@ from dccss.mechanics.structure import G, Ground, Structure, respond
 from dccss.paper.prototypes import DFP1
 from dccss.records import Record, RecordPair
 
-pytestmark = pytest.mark.slow
+# one worker runs them all: its OpenSees runs (functools.cache) serve each test that uses them
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("articulated_opensees")]
 
 RECORDS = ROOT / "config/studies/records"
 W = 1000.0  # N: drops out
