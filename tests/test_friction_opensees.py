@@ -357,6 +357,7 @@ def _largest(x, y):
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("opensees_ptv")  # one worker: its FPBearingPTV runs (functools.cache) serve both
 def test_the_ptv_model_is_opensees():
     """The model with all of FPBearingPTV's features is OpenSees, stroke and temperature, at every uy; and
     OpenSees' temperature is the rectangle rule of its own flux, cooler than the half-space's exact
@@ -386,6 +387,7 @@ def test_the_ptv_model_is_opensees():
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("opensees_ptv")
 def test_ptv_against_the_temperature_law():
     """OpenSees - dccss = (OpenSees - model: rounding) + the shares of the model's features, taken away in
     turn (the stale plastic stroke, the sphere, the heat's bookkeeping, μ's lag) + the elastic branch's."""
