@@ -139,12 +139,15 @@ def figure(ds, at=None, title=None):
     sections = grid[0, :].subgridspec(1, len(steps))
     shapes, parts = drawing.body_shapes(g), halves(g, hinge)
     L1, L3 = a["pendulum_length_1_m"], a["pendulum_length_3_m"]
+    drawn = []
     for k, n in enumerate(steps):
         ax = fig.add_subplot(sections[0, k])
-        points = draw_device(ax, g, np.arcsin(np.clip(u1[n] / L1, -1, 1)), np.arcsin(np.clip(u3[n] / L3, -1, 1)),
-                             hinge, shapes, parts)
-        drawing.frame_points(ax, points, margin=2.0)
+        drawn.append((ax, draw_device(ax, g, np.arcsin(np.clip(u1[n] / L1, -1, 1)),
+                                      np.arcsin(np.clip(u3[n] / L3, -1, 1)), hinge, shapes, parts)))
         ax.set_title(f"({chr(97 + k)}) t = {t[n]:.3g} s: hinge {rotation[n]:+.2f} deg", fontsize=9)
+    every = np.concatenate([points for _, points in drawn])
+    for ax, _ in drawn:  # one frame for all: the sections the same size, at the same scale
+        drawing.frame_points(ax, every, margin=2.0)
     split = fig.add_subplot(grid[1, 0])
     split.plot(t, 100 * u, color="k", lw=1.1, label="stroke $u = u_1 + u_3$")
     for j, uj in ((1, u1), (3, u3)):

@@ -155,6 +155,7 @@ def test_the_corner_equations_keep_the_surfaces_on_their_friction_and_sliding_al
     assert velocity == pytest.approx(y[2:4], abs=1e-14)
 
 
+@pytest.mark.slow  # scipy's Radau at 1e-12: 2 s
 def test_the_radau_step_equals_scipys_radau_on_a_turning_slide():
     """dccss's Radau IIA (transformed Newton systems, RADAU5's error estimate) against scipy's Radau on the
     same equations written as an ODE, over 0.3 s of both surfaces sliding while the velocity turns."""
@@ -200,7 +201,8 @@ def test_one_component_surfaces_yielding_together_is_the_rigid_slider():
     assert a.sticking.any() and not a.sticking.all()
 
 
-@pytest.mark.parametrize("law", [0.045, {"law": "velocity", "slow": 0.03, "fast": 0.06, "rate": 20.0}])
+@pytest.mark.parametrize("law", [pytest.param(0.045, marks=pytest.mark.slow),  # 2 s
+                                 {"law": "velocity", "slow": 0.03, "fast": 0.06, "rate": 20.0}])
 def test_two_components_surfaces_yielding_together_is_the_rigid_slider(law):
     """The same in two components, Coulomb and a speed law (DFP1's halves are alike: both surfaces slide at
     the same speed), to 1e-9 m: surfaces alike slide as the rigid slider (``surfaces_alike``)."""

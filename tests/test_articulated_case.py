@@ -206,6 +206,7 @@ def test_the_device_is_drawn_with_its_halves_turned_about_the_hinge():
         assert np.allclose(np.linalg.norm(cap - p["C1"], axis=1), R1)
 
 
+@pytest.mark.slow  # a figure and an animation: 1.6 s
 def test_plot_and_animate_an_articulated_history(tmp_path):
     from dccss.animation import animate
     from dccss.plan import plot
@@ -216,6 +217,19 @@ def test_plot_and_animate_an_articulated_history(tmp_path):
     assert "sections at" in line and (tmp_path / "a.png").stat().st_size > 10_000
     line = animate(path, tmp_path / "a.gif", max_frames=4)
     assert "shown as 4 frames" in line and (tmp_path / "a.gif").is_file()
+
+
+def test_the_sections_are_drawn_at_one_scale():
+    """The device's sections share their limits (one drawn near the centre had a narrower frame, so a taller
+    equal-aspect box, and its title ran off the figure)."""
+    from dccss.hinged import figure, instants
+
+    ds = case_from({"prototype": "DFP1", "dt": 0.01, "model": "compliant", "slider": "articulated",
+                    "excitation": {"kind": "record", "file": "config/studies/records/synthetic.AT2", "scale": 2.2},
+                    "structure": {"friction": [0.03, 0.06], "friction_on": "surfaces"}}).run()
+    n = len(instants(ds))
+    sections = figure(ds).axes[:n]
+    assert n >= 2 and len({(ax.get_xlim(), ax.get_ylim()) for ax in sections}) == 1
 
 
 @pytest.mark.parametrize("structure", [False, True])

@@ -243,6 +243,7 @@ def test_the_fragility_figure_draws_the_observed_fractions_and_the_fitted_curve(
 
 
 # --- jobs of several records ------------------------------------------------------------------------------
+@pytest.mark.slow  # a suite run three ways: 4 s
 def test_records_spread_over_jobs_give_the_same_results_to_the_last_bit(suite):
     """record_jobs 3 (a job per group of records, by their names' hash) against a job per record: the combined
     dataset identical, its netCDF the same bytes."""

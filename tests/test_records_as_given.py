@@ -149,6 +149,7 @@ def test_a_down_positive_vertical_is_negated(tmp_path):
     assert "down-positive" in down.attrs()["record_vertical_sign"]
 
 
+@pytest.mark.slow  # dccss run in a process: 2 s
 def test_a_down_positive_vertical_is_said_in_the_log_and_the_run_summary(tmp_path):
     """Negating a DWN vertical is said: a RecordWarning, which dccss run prints (it was done without a word)."""
     a, _ = _accelerations()
