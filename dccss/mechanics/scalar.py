@@ -39,10 +39,13 @@ prange = range
 _KERNELS = {}
 
 
-def jit(function):
+def jit(function=None, *, inline=True):
     """Mark a kernels' helper: the plain Python function (it runs interpreted), registered with
-    Numba by ``compile_helpers`` so that a kernel calling it compiles it, inlined."""
-    _PENDING.append(function)
+    Numba by ``compile_helpers`` so that a kernel calling it compiles it, inlined; or, ``jit(inline=False)``,
+    as a function of its own (a long helper called from several places: compiled once, not at each)."""
+    if function is None:
+        return lambda f: jit(f, inline=inline)
+    _PENDING.append((function, inline))
     return function
 
 
@@ -57,7 +60,8 @@ def compile_helpers():
     from numba.extending import register_jitable
 
     while _PENDING:
-        register_jitable(error_model=OPTIONS["error_model"], forceinline=True)(_PENDING.pop())
+        function, inline = _PENDING.pop()
+        register_jitable(error_model=OPTIONS["error_model"], forceinline=inline)(function)
 
 
 def kernel(function, parallel=False):

@@ -25,8 +25,9 @@ def _device():
 
 def parts() -> dict:
     """{part: (kernel function, run compiling it)} of every registered model, planar and spatial, and of
-    the isolated structure, the longest to compile first (planar 7-8 s, the structure's two-component
-    kernels 6 s (rigid) and 20 s (articulated), spatial 4 s, one-component 1 s)."""
+    the isolated structure, the longest to compile first (planar 9 s, the structure's two-component
+    kernels 9 s (rigid) and 28 s (articulated), spatial 6 s, one-component 2-3 s, each alone on the project's
+    two-core machine)."""
     planar = {f"planar {name}": (registry.model(name).planar.batch,
                                  lambda name=name: compiled.run(name, _device(), np.array([0.0, 1e-3])))
               for name in registry.names(lambda entry: entry.planar is not None)}

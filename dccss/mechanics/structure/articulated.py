@@ -351,7 +351,7 @@ def _at_rest(bx, by, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold):
     return _rest(-bx / (g * mm), -by / (g * mm), q0 / L1, q1 / L1, (x0 - q0) / L3, (x1 - q1) / L3, r1, r3, hold)
 
 
-@scalar.jit
+@scalar.jit(inline=False)
 def _both(y, y0, end, h, p, rows, k0, work, Z):
     """Radau over [0, end] from y (overwritten): (what ended it: NONE, STOP, YIELD (σ reached 0 or 1) or
     TOO_SHORT, when, the next step). The Jacobian is kept from step to step while Newton converges fast
@@ -437,7 +437,7 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
     return NONE, end, h
 
 
-@scalar.jit
+@scalar.jit(inline=False)
 def _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z):
     """The step from (t, y0) to the event (STOP or YIELD) that the trial step of length ``taken`` (its stages
     Z) shows: located on its collocation polynomial (a stop before its slowest point, ``bound``), then the

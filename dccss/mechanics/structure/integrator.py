@@ -229,7 +229,7 @@ def _locate(event, t, y, h, K, out, trial, load, law, start, A, B, C, other):
     return hi
 
 
-@scalar.jit
+@scalar.jit(inline=False)
 def integrate(y, end, h, load, law, start, stop, rtol, atol, A, B, C, E3, E5, K, out, trial, other):
     """DOP853 over [0, end] from y (overwritten with the state reached): (what ended it, when, the next
     step). Events: STOP if ``stop``; MOVING and HELD for a ``start``; YIELD where ``other`` (the other
