@@ -22,7 +22,6 @@ Run: python benchmarks/articulated.py [--duration 90] [--dt 0.005] [--scale 2.0]
 import argparse
 import os
 import sys
-import time
 from pathlib import Path
 
 os.environ.setdefault("DCCSS_BACKEND", "numba")
@@ -30,10 +29,10 @@ os.environ.setdefault("DCCSS_BACKEND", "numba")
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from friction import record  # noqa: E402  (the same record as the friction laws' benchmark)
+from friction import best_of, record  # noqa: E402  (the friction laws' benchmark's record and timing)
 
 from dccss.mechanics import backend  # noqa: E402
-from dccss.mechanics.structure import Ground, Structure, respond  # noqa: E402
+from dccss.mechanics.structure import Ground, Structure  # noqa: E402
 from dccss.mechanics.structure.sliders import pendulums  # noqa: E402
 from dccss.paper.prototypes import DFP1  # noqa: E402
 
@@ -59,14 +58,7 @@ def main():
     args = parser.parse_args()
     t, acc = record(args.duration, args.dt, args.scale)
     ground = Ground.from_samples(t, acc)
-    responses = {name: respond(ground, t, DFP1, s) for name, s in STRUCTURES.items()}  # warm-up
-    best = dict.fromkeys(STRUCTURES, np.inf)
-    for _ in range(args.repeat):
-        for name, structure in STRUCTURES.items():
-            start = time.perf_counter()
-            response = respond(ground, t, DFP1, structure)
-            best[name] = min(best[name], time.perf_counter() - start)
-            assert np.array_equal(response.stroke, responses[name].stroke), f"{name}: not the same bits"
+    responses, best = best_of(STRUCTURES, ground, t, args.repeat)
     print(f"articulated backend={os.environ[backend.ENV]} samples={t.size} duration_s={t[-1]:g} dt_s={args.dt:g} "
           f"scale={args.scale:g} repeat={args.repeat}")
     for name, seconds in best.items():

@@ -53,6 +53,21 @@ def record(duration, dt, scale):
     return t, np.column_stack([np.interp(t % t0[-1], t0, a) for a in (ax, ay)]) * G * scale
 
 
+
+def best_of(structures, ground, t, repeat):
+    """Each structure's response to ``ground`` on DFP1 (after a warm-up run that compiles or loads its kernel, on
+    the whole record) and its best time of ``repeat`` runs, the structures taken in turn in each round; every
+    run must give the same bits."""
+    responses = {name: respond(ground, t, DFP1, structure) for name, structure in structures.items()}
+    best = dict.fromkeys(structures, np.inf)
+    for _ in range(repeat):
+        for name, structure in structures.items():
+            start = time.perf_counter()
+            response = respond(ground, t, DFP1, structure)
+            best[name] = min(best[name], time.perf_counter() - start)
+            assert np.array_equal(response.stroke, responses[name].stroke), f"{name}: not the same bits"
+    return responses, best
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=90.0)
@@ -63,16 +78,7 @@ def main():
     t, acc = record(args.duration, args.dt, args.scale)
     ground = Ground.from_samples(t, acc)
     structures = {name: Structure(friction) for name, friction in STRUCTURES.items()}
-    responses = {}
-    for name, structure in structures.items():  # warm-up: compile or load each kernel, on the whole record
-        responses[name] = respond(ground, t, DFP1, structure)
-    best = dict.fromkeys(structures, np.inf)
-    for _ in range(args.repeat):
-        for name, structure in structures.items():
-            start = time.perf_counter()
-            response = respond(ground, t, DFP1, structure)
-            best[name] = min(best[name], time.perf_counter() - start)
-            assert np.array_equal(response.stroke, responses[name].stroke), f"{name}: not the same bits"
+    responses, best = best_of(structures, ground, t, args.repeat)
     print(f"friction backend={os.environ[backend.ENV]} samples={t.size} duration_s={t[-1]:g} dt_s={args.dt:g} "
           f"scale={args.scale:g} repeat={args.repeat}")
     for name, seconds in best.items():
