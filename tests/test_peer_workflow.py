@@ -68,16 +68,29 @@ def test_twelve_pairs_as_peer_gives_them_run_and_each_equals_its_record_alone(tm
 
 
 def test_a_fourteen_record_download_with_verticals_runs_scaled_by_peers_factors(tmp_path):
+    """Crossed as a design study crosses them: the download's pairs with their verticals, the friction's bounds,
+    both models, the records in a few jobs; the results combined and every figure drawn."""
     records = example_records()
-    study = {**STUDY, "sweep": {"record": [{"peer": "downloads/_SearchResults.csv", "vertical": True}]}}
+    study = {**STUDY, "models": ["compliant", "stick_slip"], "record_jobs": 4,
+             "structure": {"friction": 0.05, "property": {"lower": 0.8, "upper": 1.3}},
+             "sweep": {"record": [{"peer": "downloads/_SearchResults.csv", "vertical": True}],
+                       "property": ["lower", "nominal", "upper"]},
+             "histories": [{"record": "RSN6_El_Centro_Array__9", "property": "upper"}]}
     work, csv, run = _run(tmp_path, records, study)
     assert run.returncode == 0, run.stderr[-3000:]
     ds = xr.open_dataset(work / "results/studies/peer/peer.nc")
-    assert ds.sizes["record"] == 14
+    assert ds.sizes["record"] == 14 and ds.sizes["property"] == 3 and ds.sizes["model"] == 2
     assert np.array_equal(ds["record_scale"].values, [r.scale_factor for r in records])
     assert np.all(ds["normal_ratio_min"].sel(model="compliant").values < 1.0)
     assert "records_uplift" in ds and "normal_ratio_min_suite" in ds
-    assert (work / "figures/studies/peer/maps.png").is_file()
+    assert np.array_equal(ds["stroke_max_abs_envelope"].values, ds["stroke_max_abs"].max("property").values)
+    # the structure's summaries do not depend on the pad's model
+    assert np.array_equal(ds["stroke_max_abs"].sel(model="compliant").values,
+                          ds["stroke_max_abs"].sel(model="stick_slip").values, equal_nan=True)
+    history = xr.open_dataset(work / "results/studies/peer/histories/stick_slip_0.nc")
+    assert "vertical_acceleration" in history and history.attrs["structure_property_factor"] == 1.3
+    for name in ("maps.png", "histories.png"):
+        assert (work / "figures/studies/peer" / name).is_file(), name
     # a file the table lists but the folder lacks: named with its record, nothing run
     (csv.parent / records[5].file(records[5].v)).unlink()
     (work / "results").rename(work / "old_results")
