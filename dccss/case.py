@@ -84,6 +84,7 @@ from .mechanics.geometry import ANGLES, LENGTHS, PARAMETERS, Geometry
 from .mechanics.kinematics import NORMALS
 from .mechanics.newton import FAILURE_POLICIES, NewtonOptions
 from .mechanics.structure import FRICTION_ON, SLIDERS, Structure, StructureError
+from .mechanics.structure.sliders import hinge_problem
 from .paper.prototypes import TABLE1
 from .schema import errors as schema_errors
 from .schema import load_yaml, schema
@@ -596,9 +597,12 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
     structure = problems.check("structure", structure_from, m["structure"], "structure", kind, hinge)
     if structure is not None and geometry is not None:
         problems.check("structure", _device_friction, structure, geometry)
-        if kind == "articulated":
-            problems.check("slider", _pendulums, structure, geometry)
-    friction = problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None)
+    if kind == "articulated" and geometry is not None:
+        problems.check("slider", _hinge, geometry, hinge)
+    if not problems.failed("slider"):  # the friction's meaning depends on the slider's kind
+        friction = problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None)
+    else:
+        friction = None
     if excitation is not None and has_vertical(excitation) and m["structure"] is None:
         problems.add("excitation", VERTICAL_WITHOUT_STRUCTURE)
     model = problems.check("model", choice, m["model"], "model", registry.names()) if "model" in m else None
@@ -638,12 +642,11 @@ def _imposed_friction(value, kind, structure) -> tuple | None:
     return tuple(float(x) for x in value)
 
 
-def _pendulums(structure, geometry):
-    """An articulated structure's pendulum lengths on ``geometry``, checked (a CaseError otherwise)."""
-    try:
-        return structure.pendulums(geometry)
-    except StructureError as err:
-        raise CaseError(str(err).replace("structure.hinge", "slider.hinge")) from None
+def _hinge(geometry, hinge):
+    """An articulated slider's hinge on ``geometry``, checked (a CaseError otherwise)."""
+    problem = hinge_problem(geometry, hinge)
+    if problem:
+        raise CaseError(problem)
 
 
 def _device_friction(structure, geometry):

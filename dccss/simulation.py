@@ -99,7 +99,7 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
     if slider == "articulated":
         return articulated(geometry, excitation, times, dt=dt, structure=structure, hinge=hinge, friction=friction,
                            capacity=capacity, on_failure=on_failure, attrs=attrs, progress=progress)
-    response, lifted = None, None
+    response, lifted, samples = None, None, len(times)
     if structure is None:
         imposed = excitation.displacement(times)
     else:
@@ -137,6 +137,8 @@ def simulate(geometry, excitation, *, model="compliant", dt, theta2_0=0.0, norma
                         capacity_exceeded_displacement_m=run.reached["displacement"])
     if run.status == "stopped":
         ds.attrs["stopped_at_s"] = float(times[run.steps - 1])
+    if response is not None and run.steps < samples:  # the structure's peaks of the history as cut
+        ds.attrs.update(_peaks_until(response, run.steps))
     if response is not None and response.uplift:
         ds.attrs.update(uplift_attrs(response))
         if lifted is not None and run.steps == lifted and not ds.attrs["failed"]:
@@ -289,10 +291,10 @@ def articulated(geometry, excitation, times, *, dt, structure=None, hinge=0.0, f
                              "two, drive it through a structure (structure: {friction: [mu1, mu3], friction_on: "
                              "surfaces})")
         mu1, mu3 = _surfaces_friction(friction)
+        problem = sliders.hinge_problem(geometry, hinge)
+        if problem:
+            raise ValueError(problem)
         L1, L3 = sliders.pendulums(geometry, hinge)
-        if not (L1 > 0.0 and L3 > 0.0):
-            raise ValueError(f"hinge: {hinge!r} m above the pad's centre puts the hinge beyond a sphere centre "
-                             f"(L_1 = {L1:.4g} m, L_3 = {L3:.4g} m)")
         m1, m3 = mu1 * float(geometry.R1) / L1, mu3 * float(geometry.R3) / L3
         u = 0.0 - excitation.displacement(times)
         u1, f, phase = quasi_static(u, L1, L3, m1, m3)
@@ -321,18 +323,12 @@ def articulated(geometry, excitation, times, *, dt, structure=None, hinge=0.0, f
                         ring_stroke_3_m=rings[1])
     steps = len(times) if lifted is None else lifted
     size = np.linalg.norm(surfaces.stroke[:steps], axis=1)  # (T, 2)
-    first, reached = steps, {}
-    for j, plate in enumerate((1, 3)):
-        beyond = np.nonzero(size[:, j] >= rings[j])[0]
-        if beyond.size:
-            reached[plate] = int(beyond[0])
-            slider_attrs[f"ring_{plate}_reached_at_s"] = float(times[beyond[0]])
-            slider_attrs[f"ring_{plate}_exceeded_by_m"] = float(size[:, j].max() - rings[j])
-            first = min(first, int(beyond[0]))
+    reached = {plate: int(np.argmax(size[:, j] >= rings[j])) for j, plate in enumerate((1, 3))
+               if np.any(size[:, j] >= rings[j])}
     failed = None
     if reached and capacity in ("stop", "error"):
         plate = min(reached, key=reached.get)
-        j = 0 if plate == 1 else 1
+        j, first = (0 if plate == 1 else 1), reached[plate]
         message = (f"the half on surface {plate} reaches the ring of RB{plate} at t = {times[first]:.6g} s "
                    f"(u_{plate} = {size[first, j]:.4g} m, its ring at {rings[j]:.4g} m)")
         if capacity == "error" and on_failure != "mark":
@@ -340,6 +336,15 @@ def articulated(geometry, excitation, times, *, dt, structure=None, hinge=0.0, f
         failed = message if capacity == "error" else None
         slider_attrs["stopped_at_s" if capacity == "stop" else "failure_time_s"] = float(times[first])
         steps = first + 1
+    for j, plate in enumerate((1, 3)):  # the rings as the history (as cut) reaches them
+        if reached.get(plate, steps) < steps:
+            slider_attrs[f"ring_{plate}_reached_at_s"] = float(times[reached[plate]])
+            slider_attrs[f"ring_{plate}_exceeded_by_m"] = float(size[:steps, j].max() - rings[j])
+    if response is not None and steps < len(times):  # the peaks of the history as cut
+        slider_attrs.update(_peaks_until(response, steps))
+        slider_attrs.update(stroke_1_max_abs_m=float(size[:steps, 0].max()),
+                            stroke_3_max_abs_m=float(size[:steps, 1].max()),
+                            hinge_rotation_max_abs_deg=float(np.degrees(np.abs(surfaces.hinge[:steps]).max())))
     if progress is not None:
         progress(steps, len(times))
     ds = articulated_dataset(times, excitation, geometry, stroke, surfaces, force, dt=dt, slider_attrs=slider_attrs,
@@ -351,6 +356,16 @@ def articulated(geometry, excitation, times, *, dt, structure=None, hinge=0.0, f
     if response is not None and response.uplift:
         ds.attrs.update(uplift_attrs(response))
     return ds
+
+
+def _peaks_until(response, steps) -> dict:
+    """The structure's peak attributes of a history cut at ``steps`` samples (a ring reached under ``capacity:
+    stop`` or ``error``, an uplift): over the samples kept, not the whole record (``Response.peaks``)."""
+    out = {"structure_stroke_max_abs_m": float(np.linalg.norm(response.stroke[:steps], axis=1).max()),
+           "structure_shear_ratio_max_abs": float(np.linalg.norm(response.shear_ratio[:steps], axis=1).max())}
+    if response.normal is not None:
+        out["structure_normal_ratio_min"] = float(np.min(response.normal[:steps]))
+    return out
 
 
 def _surfaces_friction(friction) -> tuple[float, float]:

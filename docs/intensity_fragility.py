@@ -1,11 +1,12 @@
 """The figures of docs/how-to/intensity-and-fragility.md: docs/img/ida.png and docs/img/fragility.png.
 
-The how-to's study (docs/intensity_fragility.yaml: DFP1 on its structure, 12 records at 8 levels of
-Sa(T_isolated), the friction's three bounds, the compliant model, Δt = 0.02 s) run as a user runs it, by
+The how-to's study, the shipped config/studies/ida.yaml (DFP1 on its structure, 12 records at 8 levels of
+Sa(T_isolated), the friction's three bounds, the compliant model, Δt = 0.02 s), run as a user runs it, by
 ``snakemake --profile profiles/default --configfile config/studies/ida.yaml`` in a temporary copy of the project
-(Snakefile, config, workflow, profiles), on 12 synthetic records in PEER's format written by
-``tests/suite_records.py`` (the shipped synthetic pair's components mixed, shifted, some reversed in time, each at
-its own amplitude: real records cannot be redistributed). The workflow's ``ida.png`` and ``fragility.png`` are
+(Snakefile, config, workflow, profiles), on the 12 shipped synthetic records in PEER's format
+(config/studies/records/suite, written by config/studies/records/make_suite.py: the shipped synthetic pair's
+components mixed, shifted, some reversed in time, each at its own amplitude: real records cannot be
+redistributed). The workflow's ``ida.png`` and ``fragility.png`` are
 copied as drawn, and the fitted medians and dispersions printed (the how-to quotes them). About 30 s on two cores.
 
 Run: python docs/intensity_fragility.py
@@ -22,10 +23,7 @@ from pathlib import Path
 import xarray as xr
 
 ROOT = Path(__file__).resolve().parent.parent
-STUDY = ROOT / "docs" / "intensity_fragility.yaml"
 OUT = ROOT / "docs" / "img"
-sys.path.insert(0, str(ROOT / "tests"))
-from suite_records import write_suite  # noqa: E402
 
 
 def main():
@@ -33,8 +31,6 @@ def main():
         work = Path(work)
         for name in ("Snakefile", "config", "workflow", "profiles"):
             (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, work / name)
-        write_suite(work / "config/studies/ida_records", 12)
-        shutil.copy(STUDY, work / "config/studies/ida.yaml")
         run = subprocess.run([str(Path(sys.executable).parent / "snakemake"), "--profile", "profiles/default",
                               "--configfile", "config/studies/ida.yaml"], cwd=work, capture_output=True, text=True)
         if run.returncode:

@@ -5,8 +5,8 @@ A study's ``intensity`` key names the measure (``spectra.MEASURES``): the spectr
 (the device's isolated period T = 2π sqrt(L/g) by default), the peak ground acceleration or the peak ground
 velocity, a pair's by a definition (RotD50, RotD100 or the geometric mean of its components). Its sweep axis
 ``intensity`` gives the levels, in g for Sa and PGA, in m/s for PGV. Record r at level x runs at the factor
-x / IM_r, IM_r its own intensity as processed at scale 1: the very record ``dccss run`` reads with ``scale`` that
-factor (the same bits).
+x / IM_r, both in one unit (x g / IM_r with IM_r in m/s² for Sa and PGA), IM_r its own intensity as processed at
+scale 1: the very record ``dccss run`` reads with ``scale`` that factor (the same bits).
 """
 
 from __future__ import annotations

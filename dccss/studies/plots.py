@@ -523,6 +523,8 @@ def maps(ds, marks: dict, caption: str) -> Figure:
         fixed = {"statistic": ds.sizes["statistic"], **{n: size for n, size in fixed.items() if n != "record"}}
     # maps: a further categorical axis (a prototype) gets rows of its own, one per category and model
     group = next((n for n, size in fixed.items() if kind == "map" and size > 1 and _categorical(ds, n)), None)
+    if kind == "lines" and fixed.get("property", 0) > 1:  # curves: each friction bound drawn, by its marker
+        group = "property"
     fixed = {n: size for n, size in fixed.items() if n != group}
     ds = ds.isel({name: 0 for name in fixed})
     ds = ds.sortby([name for name in drawn if not _categorical(ds, name)])
@@ -543,8 +545,11 @@ def maps(ds, marks: dict, caption: str) -> Figure:
         if kind == "categories" and ds.sizes[drawn[0]] > ROTATE_FROM:  # room for each category's label and marks
             inches = (max(LINE_INCHES[0], CATEGORY_INCHES * ds.sizes[drawn[0]] + 1.0), LINE_INCHES[1] + 0.6)
         fig, columns = _grid(len(variables), inches)
-        draw = _draw_lines if kind == "lines" else _draw_categories
-        legend = draw([column[0] for column in columns], ds, drawn, marks, variables, models)
+        if kind == "lines":
+            legend = _draw_lines([column[0] for column in columns], ds, drawn, marks, variables, models,
+                                 bounds=group == "property")
+        else:
+            legend = _draw_categories([column[0] for column in columns], ds, drawn, marks, variables, models)
         what = f"summaries against {_symbol(drawn[0])}" + (f" per {_symbol(drawn[1])}" if len(drawn) > 1 else "")
     title = f"Study {ds.attrs.get('study', '')}: {what}"
     if fixed:
@@ -802,55 +807,65 @@ def _flag_handles(ds, models, dims):
                    label=fail_label + ", marked on the bottom edge")]
 
 
-def _draw_lines(axs, ds, drawn, marks, variables, models):
-    """One panel per variable: the summary against the numeric axis, a curve per model (and category)."""
+def _draw_lines(axs, ds, drawn, marks, variables, models, bounds=False):
+    """One panel per variable: the summary against the numeric axis, a curve per model (and category); with
+    ``bounds`` (a further axis of the friction's bounds) a curve per bound too, each bound's by its marker."""
     x_name = drawn[0]
     x = _plot_values(ds, x_name)
     groups = list(ds[drawn[1]].values) if len(drawn) > 1 else [None]
     crowd = len(drawn) > 1 and drawn[1] == "record" and len(groups) > ROTATE_FROM  # a suite's many records
+    labels = list(ds["property"].values) if bounds else [None]
     for ax, (name, label, factor, unit) in zip(axs, variables):
         failures = []
-        for model in (m for m in models if _defined(ds, name, m)):
+        for model, (b, bound) in ((m, b) for m in models if _defined(ds, name, m) for b in enumerate(labels)):
             style = model_line(model, models)
+            own = ds.sel(model=model) if bound is None else ds.sel(model=model, property=bound)
             for g, group in enumerate(groups):
-                sel = ds.sel(model=model) if group is None else ds.sel({"model": model, drawn[1]: group})
+                sel = own if group is None else own.sel({drawn[1]: group})
                 values = factor * sel[name].values
                 if crowd:  # each record a faint line, its flags counted in the legend, not marked point by point
                     ax.plot(x, values, color=style["color"], lw=0.8, **SUITE_RECORDS, gid="record")
                     continue
-                shape = {} if group is None else {"marker": GROUP_MARKERS[g % len(GROUP_MARKERS)]}
+                shape = ({} if group is None and bound is None else
+                         {"marker": GROUP_MARKERS[(b if bound is not None else g) % len(GROUP_MARKERS)]})
                 marker = dict(_marker(model), **shape)
                 ax.plot(x, values, **style, **marker, **(SUITE_RECORDS if f"{name}_suite" in ds else {}))
                 capacity, failed = _case_flags(sel)
                 _flag_marks(ax, x, values, capacity, failed, style["color"], failures)
-            suite = _suite_lines(ds, name)
+            suite = _suite_lines(own, name)
             if suite is not None:  # the suite's mean and 84th percentile over the records
+                shape = {} if bound is None else {"marker": GROUP_MARKERS[b % len(GROUP_MARKERS)], "ms": 5}
                 for statistic, look in _suite_looks(style).items():
-                    ax.plot(x, factor * ds[suite].sel(model=model, statistic=statistic).transpose(x_name).values,
-                            **look)
-            if f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims:  # the bounds' largest
+                    ax.plot(x, factor * own[suite].sel(statistic=statistic).transpose(x_name).values,
+                            **look, **shape)
+            if bound is None and f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims:
                 ax.plot(x, factor * ds[f"{name}_envelope"].sel(model=model).transpose(x_name).values,
-                        **ENVELOPE_OVER, zorder=style["zorder"] + 1, gid="envelope")
+                        **ENVELOPE_OVER, zorder=style["zorder"] + 1, gid="envelope")  # the bounds' largest
         _failure_marks(ax, failures)
         _line_marks(ax, ds, x_name, marks)
         _scale(ax, "x", x_name, x)
         ax.set_xlabel(_axis_label(ds, x_name))
         _summary_axes(ax, ds, name, label, unit, models)
     legend = [[Line2D([], [], **model_line(m, models), **_marker(m), label=model_title(m)) for m in models]]
+    if bounds:
+        legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[b % len(GROUP_MARKERS)], color="0.4",
+                              label=_value_text(ds, "property", bound)) for b, bound in
+                       enumerate(labels)])
     if crowd:
         legend.append([Line2D([], [], color="0.4", lw=0.8, **SUITE_RECORDS, label=f"each of the {len(groups)} "
-                                                                                  f"records")])
-        cap_label, fail_label = _flag_labels(ds, models, drawn)
-        return legend + ([_suite_handles(bounds="property" in ds.dims)] if "statistic" in ds.coords else []) + [
+                                                                                  f"records" + ", at each bound" * bounds)])
+        cap_label, fail_label = _flag_labels(ds, models, drawn + ["property"] * bounds)
+        return legend + ([_suite_handles(bounds="property" in ds.dims and not bounds)] if "statistic" in ds.coords
+                         else []) + [
             [Line2D([], [], ls="none", label=f"{cap_label}; {fail_label}: counted, not marked point by point")]]
     if len(drawn) > 1:
         legend.append([Line2D([], [], ls="none", marker=GROUP_MARKERS[g % len(GROUP_MARKERS)], color="0.4",
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
     if "statistic" in ds.coords:
-        legend.append(_suite_handles(bounds="property" in ds.dims))
-    if any(f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims for name, *_ in variables):
+        legend.append(_suite_handles(bounds="property" in ds.dims and not bounds))
+    if not bounds and any(f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims for name, *_ in variables):
         legend.append([Line2D([], [], **ENVELOPE_OVER, label=ENVELOPE_LABEL)])
-    return legend + [_flag_handles(ds, models, drawn)]
+    return legend + [_flag_handles(ds, models, drawn + ["property"] * bounds)]
 
 
 def _suite_looks(style):

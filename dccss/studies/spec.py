@@ -345,6 +345,8 @@ class Study:
                                        None if swept_device else float(geometry.L))
             if intensity is not None:
                 problems.check("sweep", _levels_alone, config, axes)
+            if intensity is not None and excitation is not None:
+                problems.check("intensity", _definition_of_pairs, config.get("intensity"), excitation)
         if "fragility" in config and (intensity is None and not problems.failed("intensity")):
             problems.add("fragility", "fragility: is fitted on the stripes of intensity levels: sweep them "
                                       "(sweep.intensity) or drop fragility")
@@ -404,6 +406,14 @@ def _summaries(structure, excitation, records, axes) -> dict:
         if "slider" in axes or structure.slider != "rigid":
             out.update(dict.fromkeys(SURFACE_SUMMARIES, False))
     return out
+
+
+def _definition_of_pairs(value, excitation):
+    """``intensity.definition`` combines a pair's two components: refused for records of one component."""
+    if isinstance(value, dict) and "definition" in value and excitation.components == 1:
+        raise StudyError(f"intensity.definition: {value['definition']!r} combines the two horizontal components of "
+                         f"record pairs; these records have one component (their own spectrum is the intensity): "
+                         f"drop the key")
 
 
 def _levels_alone(config, axes):
@@ -686,17 +696,19 @@ def _bounds(value, axes) -> dict:
 
 
 def _check_frictions(grid):
-    """Every case's device friction is below 1 (a surfaces' friction grows by (R1 + R3) / L); the first
-    case where it is not is named."""
+    """Every case's device friction is below 1 (a surfaces' friction grows by (R1 + R3) / L) and an articulated
+    slider's hinge lies inside each case's pad; the first case where not is named."""
     if grid.study.structure is None or grid.study.structure.friction_on == "device":
         return
     cases = np.arange(grid.n_cases)
     for i, (structure, device) in enumerate(zip(grid.structures(cases), grid.pendulums(cases))):
         try:
             structure.device_friction(device)
+            if structure.slider == "articulated":
+                structure.pendulums(device)
         except StructureError as err:
             where = ", ".join(f"{k}={v}" for k, v in grid.point(i).items())
-            raise StudyError(f"sweep point {where}: {err}") from None
+            raise StudyError(f"sweep point {where}: {str(err).replace('structure.hinge', 'slider.hinge')}") from None
 
 
 def _record_jobs(value, config, axes) -> int | None:
@@ -705,7 +717,7 @@ def _record_jobs(value, config, axes) -> int | None:
         return None
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
         raise StudyError(f"record_jobs: expected an integer >= 1, got {value!r}")
-    if "record" not in axes:
+    if "record" not in (config.get("sweep") or {}) and "record" not in axes:
         raise StudyError("record_jobs: spreads a suite's records over jobs; this study has no record axis")
     if config.get("chunk_size", "auto") != "auto":
         raise StudyError("record_jobs: a job then runs its records' cases together: leave chunk_size auto")

@@ -12,7 +12,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..friction import COULOMB, FACTOR, LAWS, T0, WEIGHT, FrictionError, row, surface_mu
-from .sliders import SLIDERS, pendulums
+from .sliders import SLIDERS, hinge_problem, pendulums
 
 G = 9.80665  # standard gravity (m/s²)
 
@@ -101,12 +101,11 @@ class Structure:
 
     def pendulums(self, geometry) -> tuple[float, float]:
         """(L_1, L_3) (m) of the device's surfaces with this structure's hinge (``sliders.pendulums``); a
-        StructureError where the hinge is not between the sphere centres."""
-        L1, L3 = pendulums(geometry, self.hinge)
-        if not (L1 > 0.0 and L3 > 0.0):
-            raise StructureError(f"structure.hinge: {self.hinge!r} m above the pad's centre puts the hinge beyond a "
-                                 f"sphere centre (L_1 = {L1:.4g} m, L_3 = {L3:.4g} m): it must lie between C1 and C3")
-        return L1, L3
+        StructureError where the hinge is not inside the pad (``sliders.hinge_problem``)."""
+        problem = hinge_problem(geometry, self.hinge, "structure.hinge")
+        if problem:
+            raise StructureError(problem)
+        return pendulums(geometry, self.hinge)
 
     @property
     def coulomb(self) -> bool:

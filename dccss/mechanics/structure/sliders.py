@@ -62,6 +62,20 @@ def pendulums(geometry, hinge=0.0) -> tuple[float, float]:
             float(geometry.R3 * np.cos(geometry.alpha23)) - B + float(hinge))
 
 
+def hinge_problem(geometry, hinge, key="slider.hinge") -> str | None:
+    """What is wrong with an articulated slider's ``hinge`` (m above the pad's centre) on ``geometry``, or None:
+    the hinge joins the two halves inside the pad, strictly between its caps' apexes, |hinge| < h²/2 (then both
+    pendulum lengths L_j are positive: each sphere centre lies beyond its cap)."""
+    if isinstance(hinge, bool) or not isinstance(hinge, (int, float, np.integer, np.floating)) \
+            or not np.isfinite(float(hinge)):
+        return f"{key}: expected a finite number (m, the hinge's height above the pad's centre), got {hinge!r}"
+    half = 0.5 * float(geometry.h2)
+    if not abs(float(hinge)) < half:
+        return (f"{key}: {float(hinge)!r} m above the pad's centre puts the hinge outside the pad: it joins the two "
+                f"halves inside it, -h2/2 < hinge < h2/2 = {half:.4g} m")
+    return None
+
+
 def ring_strokes(geometry, hinge=0.0) -> tuple[float, float]:
     """Each surface's displacement (m) at which its half reaches the plate's ring: the half turns by
     α^j - α^2j about C^j, u_j = L_j sin(α^j - α^2j)."""
