@@ -114,8 +114,67 @@ def test_tutorial_runs(page, tmp_path):
         assert (tmp_path / "case.gif").exists() and (tmp_path / "case.png").exists()
 
 
+def _how_to_blocks(page=None):
+    for path in sorted((DOCS / "how-to").glob("*.md")) if page is None else [DOCS / "how-to" / page]:
+        for match in BLOCK.finditer(path.read_text(encoding="utf-8")):
+            yield path, match
+
+
+def test_every_how_to_block_runs_or_says_why_not():
+    """Every code block of a how-to guide is run by test_how_to_runs (yaml with a '# file:' line is written,
+    bash and python run, a snippet include is the file it includes), or is marked illustrative with the reason."""
+    unrunnable = []
+    for page, m in _how_to_blocks():
+        lang, body, why = m["lang"], m["body"], m["why"]
+        if why is not None:
+            assert len(why.split()) >= 4, f"{page.name}: the reason for an illustrative block is too short"
+            continue
+        if lang == "yaml" and not (body.startswith("# file: ") or body.startswith("--8<--")):
+            unrunnable.append((page.name, body[:40]))
+        elif lang not in ("yaml", "bash", "python"):
+            unrunnable.append((page.name, lang))
+    assert unrunnable == []
+
+
+HOW_TO_RUNS = sorted({p.name for p, m in _how_to_blocks() if m["why"] is None and m["lang"] in ("bash", "python")})
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("page", HOW_TO_RUNS)
+def test_how_to_runs(page, tmp_path):
+    """A how-to guide's files are written and its commands and Python run, in order, in a copy of the project (its
+    Snakefile, config, workflow and profiles): as a user runs them from the project's root."""
+    import shutil
+
+    for name in ("Snakefile", "config", "workflow", "profiles"):
+        (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, tmp_path / name)
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
+           "MPLBACKEND": "Agg"}
+    ran = 0
+    for _, m in _how_to_blocks(page):
+        lang, body = m["lang"], m["body"]
+        if m["why"] is not None:
+            continue
+        if lang == "yaml" and body.startswith("# file: "):
+            path = tmp_path / body.splitlines()[0].removeprefix("# file: ").strip()
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(body, encoding="utf-8")
+        elif lang == "yaml":  # a snippet include: the file is the project's own
+            assert (tmp_path / body.split('"')[1]).is_file(), body
+        else:
+            command = ["bash", "-euo", "pipefail", "-c", body] if lang == "bash" else [sys.executable, "-c", body]
+            run = subprocess.run(command, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
+            assert run.returncode == 0, f"{page}:\n{body}\n{run.stdout[-1000:]}{run.stderr[-2000:]}"
+            ran += 1
+    assert ran >= 2
+
+
 def test_how_to_case_files_are_valid(tmp_path):
-    """The how-to guides' complete case files ('# file:') pass `dccss check`."""
+    """The how-to guides' complete case and study files ('# file:', relative to the project's root) pass
+    `dccss check`."""
+    import shutil
+
+    shutil.copytree(ROOT / "config", tmp_path / "config")
     checked = 0
     for page in sorted((DOCS / "how-to").glob("*.md")):
         for m in BLOCK.finditer(page.read_text(encoding="utf-8")):
