@@ -166,7 +166,7 @@ def test_how_to_runs(page, tmp_path):
             run = subprocess.run(command, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
             assert run.returncode == 0, f"{page}:\n{body}\n{run.stdout[-1000:]}{run.stderr[-2000:]}"
             ran += 1
-    assert ran >= 2
+    assert ran >= 1
 
 
 def test_how_to_case_files_are_valid(tmp_path):
