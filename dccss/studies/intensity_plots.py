@@ -5,7 +5,9 @@ stripes) and the fragility curves.
 the smallest N/W) and per friction bound (columns), each record's response against the intensity (faint), and at
 each level the median and the 16th and 84th percentiles over the records; the intensity on the vertical axis, as
 IDA curves are drawn. ``fragility`` draws, per limit state, the fraction of the runs that exceed it at each level
-and the fitted lognormal, per model and bound. Paper units: cm, degrees.
+and the fitted lognormal, per model and bound. A fractile or a fraction stands on the runs with a value (a run that
+failed, or an articulated slider's pad summary, has none): where they are fewer than the records, their number is
+written beside it. Paper units: cm, degrees.
 """
 
 from __future__ import annotations
@@ -50,6 +52,14 @@ def _same_across_models(ds, name) -> bool:
     return bool(np.array_equal(values, np.broadcast_to(values[:1], values.shape), equal_nan=True))
 
 
+def _runs_beside(ax, x, y, runs, records, color):
+    """The number of runs a point stands on, written beside it where it is fewer than the ``records`` (and > 0)."""
+    for xi, yi, k in zip(x, y, runs):
+        if 0 < k < records:
+            ax.annotate(f"{k}", (xi, yi), xytext=(3, -9), textcoords="offset points", fontsize=7, color=color,
+                        gid="runs")
+
+
 def ida(ds, caption: str) -> Figure:
     """Each record's response against the intensity, and the median and 16/84 % over the records at each level,
     per response and friction bound (the docstring of the module)."""
@@ -68,12 +78,13 @@ def ida(ds, caption: str) -> Figure:
                 values = factor * sel.transpose("record", "intensity").values
                 for record in values:
                     ax.plot(record, levels, color=style["color"], **RECORD_LOOK)
-                with np.errstate(all="ignore"):
-                    for q, look in FRACTILES.items():
-                        counted = np.isfinite(values).sum(axis=0) > 0
-                        stripe = np.full(levels.shape, np.nan)
-                        stripe[counted] = np.nanpercentile(values[:, counted], q, axis=0)
-                        ax.plot(stripe, levels, color=style["color"], **look, gid=f"p{q}")
+                runs = np.isfinite(values).sum(axis=0)
+                for q, look in FRACTILES.items():
+                    stripe = np.full(levels.shape, np.nan)
+                    stripe[runs > 0] = np.nanpercentile(values[:, runs > 0], q, axis=0)
+                    ax.plot(stripe, levels, color=style["color"], **look, gid=f"p{q}")
+                    if q == 50:
+                        _runs_beside(ax, stripe, levels, runs, len(values), style["color"])
             ax.set_xlabel(f"{label} ({unit})")
             ax.grid(True, color="0.9", lw=0.6)
             if bound:
@@ -83,7 +94,8 @@ def ida(ds, caption: str) -> Figure:
         row[0].set_ylabel(_intensity_label(ds))
     n = ds.sizes["record"]
     handles = [[Line2D([], [], color="0.3", **RECORD_LOOK, label=f"each of the {n} records"),
-                Line2D([], [], color="0.3", **FRACTILES[50], label="median over the records"),
+                Line2D([], [], color="0.3", **FRACTILES[50], label="median over the records (k: over k runs "
+                                                                   "with a value)"),
                 Line2D([], [], color="0.3", **FRACTILES[16], label="16th and 84th percentiles")]]
     if len(models) > 1:
         handles.append([Line2D([], [], **model_line(m, models), label=model_title(m)) for m in models]
@@ -94,7 +106,7 @@ def ida(ds, caption: str) -> Figure:
 
 def fragility(ds, caption: str) -> Figure:
     """The observed fraction of the runs exceeding each limit state at each level (markers; the runs counted
-    beside them where some failed) and the fitted lognormal P(exceed | x) = Φ(ln(x / θ) / β), per model and
+    beside them where some are left out) and the fitted lognormal P(exceed | x) = Φ(ln(x / θ) / β), per model and
     friction bound."""
     names = [v.removeprefix("fragility_").removesuffix("_median") for v in ds.data_vars
              if v.startswith("fragility_") and v.endswith("_median")]
@@ -131,12 +143,7 @@ def fragility(ds, caption: str) -> Figure:
                 else:
                     status = str(ds[f"{prefix}_fit"].sel(where).values)
                     notes.append(f"{name}{' (' + who + ')' if who else ''}: no fit, {status}")
-                failed = ds[f"{prefix}_failed"].sel(where).values
-                if failed.any():
-                    for x, f, k in zip(levels, fraction, failed):
-                        if k:
-                            ax.annotate(f"−{k}", (x, f), xytext=(3, -9), textcoords="offset points", fontsize=7,
-                                        color=style["color"])
+                _runs_beside(ax, levels, fraction, n, ds.sizes["record"], style["color"])
         title = LIMITS[name][1] if name in LIMITS else ds[f"{prefix}_exceeded"].attrs["long_name"].removeprefix(
             "runs in which ").removesuffix(", per level")
         ax.set_title(f"{name}: " + title, fontsize=9, wrap=True)
@@ -150,7 +157,7 @@ def fragility(ds, caption: str) -> Figure:
     for ax in axs.ravel()[len(names):]:
         ax.set_axis_off()
     handles = [[Line2D([], [], ls="none", marker="o", mfc="none", mec="0.3",
-                       label="fraction of the runs that exceed it (−k: k runs failed short of it, left out)"),
+                       label="fraction exceeding it (k: of k runs; the others failed or have no value)"),
                 Line2D([], [], color="0.3", lw=1.6, label="lognormal fitted by maximum likelihood")]]
     if len(bounds) > 1:
         handles.append([Line2D([], [], ls={"lower": ":", "upper": "--"}.get(b, "-"), marker=BOUND_MARKERS.get(b, "o"),
