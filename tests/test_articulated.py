@@ -76,9 +76,10 @@ def test_a_bad_slider_is_refused_naming_the_key(kwargs, message):
         Structure(**given)
 
 
-def test_a_hinge_beyond_a_sphere_centre_is_refused():
+def test_a_hinge_outside_the_pad_is_refused():
     s = _articulated([0.03, 0.06], hinge=1.0)
-    with pytest.raises(StructureError, match=r"structure.hinge: 1.0 m above the pad's centre puts the hinge beyond"):
+    with pytest.raises(StructureError, match=r"structure.hinge: 1.0 m above the pad's centre puts the hinge outside "
+                                             r"the pad"):
         s.pendulums(DFP1)
 
 

@@ -48,6 +48,9 @@ RADAU_RTOL, RADAU_ATOL = 1e-6, 1e-8
 RADAU_MIN, RADAU_FIRST = 1e-12, 1e-4
 #: Newton's contraction below which the next step keeps the Jacobian
 THETA = 0.1
+#: the kernel's status where a surface yields but no split of the sliding between the two balances the hinge
+#: but one where it would slide backwards (``corner.consistent``), beside ``exact``'s DONE, CHATTER and FAILED
+UNSPLIT = 3
 
 
 @scalar.jit
@@ -125,7 +128,7 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
     and temperature (n, 2); ``rows`` the surfaces' laws (weight and ratio R^j / L_j), ``rigid_rows`` the
     same laws as the rigid slider's (R^j / L: both surfaces starting together, and sliding together
     throughout where ``alike``: ``surfaces_alike``), N/W on interval k n0[k] + n1[k] (t - t_k): (DONE, 0), or
-    (CHATTER or FAILED, the interval)."""
+    (CHATTER, FAILED or UNSPLIT, the interval)."""
     n = time.size
     L = L1 + L3
     hold = 1.0 + rtol
@@ -242,9 +245,13 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                 delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
                 y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, 1.0 if lower else 0.0
                 p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
-                corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                held = corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                if held == (1 if lower else -1):  # the surface that yields would slide backwards
+                    return UNSPLIT, k
                 sigma = y6[5]
-                state, starting, h_radau = BOTH, False, 0.0
+                # both slide, or the one that was sliding holds (its friction outgrows the force: a law of N/W)
+                state = BOTH if held == 0 else (SLIDE3 if lower else SLIDE1)
+                starting, h_radau, h_next = False, 0.0, 0.0 if held != 0 else h_next
                 continue
             # both slide
             if starting or alike:
@@ -298,8 +305,10 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                 if state == BOTH:
                     y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
                     p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
-                    corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                    held = corner.consistent(y6, p, rows, 0.0, work[0], work[1])
                     sigma = y6[5]
+                    if held != 0:  # no split balances the hinge: the surface that would slide backwards holds
+                        state = SLIDE3 if held < 0 else SLIDE1
                 starting, h_radau, h_next = False, 0.0, 0.0
                 continue
             y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
@@ -398,18 +407,40 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
         # about: the step over it is inaccurate, and would be cut down to nothing): a stop (|u̇| down to
         # REST_SPEED on the collocation polynomial, whose u̇ may pass through zero between the step's ends, as
         # it does along a line), or a surface stopping (σ out of [0, 1] at the step's end)
-        sig = y0[5] + Z[17]
-        event = NONE
         slowest, bound = _slowest(y0, Z)
-        if slowest <= REST_SPEED:
+        stops, sig = slowest <= REST_SPEED, y0[5] + Z[17]
+        ends_out = sig <= 0.0 or sig >= 1.0
+        reached, length = False, 0.0
+        if not ends_out and _share_leaves(y0, Z, 1.0) and (not stops or _located(YIELD, 1.0, y0, Z, True)[1]
+                                                            < _located(STOP, bound, y0, Z, False)[1]):
+            # σ out of [0, 1] inside the step alone (before any stop), back by its end: a surface stopping, where
+            # a step to it goes past it (σ's fast relaxation, stiff, makes the polynomial overshoot inside the
+            # step, where only its end is accurate: then the trial step stands)
+            kept, faccon = work[18], memo[3]
+            for i in range(corner.S * corner.N):
+                kept[i] = Z[i]
+            reached, length, seen = _to_event(YIELD, 1.0, True, t, y, y0, taken, p, rows, k0, work, Z)
+            if reached:
+                memo[1] = 0.0
+                return YIELD, t + length, h
+            if seen >= 0.0:  # the step to it too long for the tolerance: a shorter one, then look again
+                quotient = max(1.0 / 8.0, min(5.0, seen ** 0.25 / factor))
+                h, refresh, first, guessed = length / quotient, (1 if current else 2), True, False
+                continue
+            for i in range(corner.S * corner.N):
+                Z[i] = kept[i]
+            memo[3] = faccon
+        event = NONE
+        if stops:
             event = STOP
-        elif sig <= 0.0 or sig >= 1.0:
+        elif ends_out:
             event = YIELD
         if event != NONE:
-            reached, length, error = _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z)
+            reached, length, error = _to_event(event, bound, False, t, y, y0, taken, p, rows, k0, work, Z)
             if reached:
                 memo[1] = 0.0
                 return event, t + length, h
+            error = 2.0 ** 4 if error < 0.0 else error
             # the step to it is too long for the tolerance: a shorter one, then look again
             quotient = max(1.0 / 8.0, min(5.0, error ** 0.25 / factor))
             h, refresh, first, guessed = length / quotient, (1 if current else 2), True, False
@@ -437,38 +468,81 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
     return NONE, end, h
 
 
-@scalar.jit(inline=False)
-def _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z):
-    """The step from (t, y0) to the event (STOP or YIELD) that the trial step of length ``taken`` (its stages
-    Z) shows: located on its collocation polynomial (a stop before its slowest point, ``bound``), then the
-    step there, its length corrected by Newton on the step's end (inside the step the polynomial is of a
-    lower order than at its end: at a fast reversal the stop would be off by a little time). (reached, its
-    length, its error): reached where the event holds at the step's end (|u̇| along the way it went within
-    REST_SPEED of zero; σ within 1e-12 of 0 or 1) and the step meets the tolerance; y the state there (at
-    rest: u̇ a half REST_SPEED along the way it went; σ set to 0 or 1), else y0."""
+@scalar.jit
+def _share_leaves(y0, Z, theta):
+    """Whether σ leaves [0, 1] on the step's collocation polynomial (a cubic) by the fraction theta of the step:
+    there, or where it turns before (a surface stopping inside the step, though σ may be back by theta)."""
+    s = corner.dense(y0, Z, theta, 5)
+    if s <= 0.0 or s >= 1.0:
+        return True
+    for turn in corner.turning(Z, 5):
+        if 0.0 < turn < theta:
+            s = corner.dense(y0, Z, turn, 5)
+            if s <= 0.0 or s >= 1.0:
+                return True
+    return False
+
+
+@scalar.jit
+def _located(event, bound, y0, Z, inside):
+    """The event (STOP or YIELD) on the step's collocation polynomial: the fractions of the step (lo, hi) just
+    before and past it, by bisection (a stop before the slowest point, ``bound``); a surface stopping inside
+    the step alone (``inside``): its first occurrence (``_share_leaves``)."""
     lo, hi = 0.0, bound if event == STOP else 1.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
-        s = corner.dense(y0, Z, mid, 5)
-        past = (math.sqrt(vx * vx + vy * vy) <= REST_SPEED) if event == STOP else (s <= 0.0 or s >= 1.0)
+        if event == STOP:
+            vx, vy = corner.dense(y0, Z, mid, 2), corner.dense(y0, Z, mid, 3)
+            past = math.sqrt(vx * vx + vy * vy) <= REST_SPEED
+        else:
+            s = corner.dense(y0, Z, mid, 5)
+            past = _share_leaves(y0, Z, mid) if inside else (s <= 0.0 or s >= 1.0)
         if past:
             hi = mid
         else:
             lo = mid
+    return lo, hi
+
+
+#: Newton's iterations on the length of the step to an event; bisection after them
+EVENT_NEWTON = 40
+
+
+@scalar.jit(inline=False)
+def _to_event(event, bound, inside, t, y, y0, taken, p, rows, k0, work, Z):
+    """The step from (t, y0) to the event (STOP or YIELD) that the trial step of length ``taken`` (its stages
+    Z) shows (``inside``: a surface stopping inside the step alone): located on its collocation polynomial
+    (``_located``), then the step there, its length corrected
+    by Newton on the step's end (inside the step the polynomial is of a lower order than at its end: at a fast
+    reversal the stop would be off by a little time), kept within a bracket of the event, and after
+    EVENT_NEWTON iterations by bisection, which closes the bracket. (reached, its length, its error): reached
+    where the event holds at the step's end (|u̇| along the way it went within REST_SPEED of zero; σ within
+    1e-12 of 0 or 1), or the bracket closes on a step past it, and the step meets the tolerance; y the state
+    there (at rest: u̇ a half REST_SPEED along the way it went; σ set to 0 or 1), else y0 (and where the
+    bracket closes but no step went past the event, or a surface stops inside the step alone within RADAU_MIN
+    of its start, not there: the error -1)."""
+    lo, hi = _located(event, bound, y0, Z, inside)
     vx, vy = corner.dense(y0, Z, lo, 2), corner.dense(y0, Z, lo, 3)  # just before the event
     size = math.sqrt(vx * vx + vy * vy)
     dx, dy = vx / size, vy / size
     target = 0.0 if corner.dense(y0, Z, hi, 5) <= 0.5 else 1.0
     length = hi * taken
     reached, error = False, 0.0
-    if length <= RADAU_MIN:  # at the step's start
+    if length <= RADAU_MIN:  # at the step's start (inside alone: the polynomial's overshoot, σ relaxing fast)
+        if inside:
+            return False, 0.0, -1.0
         for i in range(corner.N):
             y[i] = corner.dense(y0, Z, hi, i)
         return True, 0.0, 0.0
+    # whether the trial step went past the event by its end: the bracket's far end, seen
+    if event == STOP:
+        past = (y0[2] + Z[2 * corner.N + 2]) * dx + (y0[3] + Z[2 * corner.N + 3]) * dy <= 0.0
+    else:
+        past = (y0[5] + Z[2 * corner.N + 5] > target) == (target == 1.0)
     # Newton on the length, kept within a bracket [before, beyond] of the event (bisection where it leaves it)
-    before, beyond = 0.0, taken
-    for _ in range(40):
+    before, beyond, iteration = 0.0, taken, 0
+    while True:
+        iteration += 1
         status, error, iterations, theta = corner.radau_step(t, y0, length, p, rows, k0, RADAU_RTOL, RADAU_ATOL,
                                                              True, 1, Z, work)
         if status != 0:
@@ -494,14 +568,16 @@ def _to_event(event, bound, t, y, y0, taken, p, rows, k0, work, Z):
         if short:
             before = length
         else:
-            beyond = length
+            beyond, past = length, True
         if beyond - before <= 1e-15 * taken + RADAU_MIN:
-            reached = True  # (a stop where u̇ jumps through zero: the bracket's end)
+            # (a stop where u̇ jumps through zero: the bracket's end); no step past the event: not there
+            reached = past
+            if not past:
+                error = -1.0
             break
         following = length - miss / rate if rate != 0.0 else 0.5 * (before + beyond)
-        length = following if before < following < beyond else 0.5 * (before + beyond)
-    else:
-        reached = True  # (not found closer in 40 steps: the last)
+        newton = iteration < EVENT_NEWTON and before < following < beyond
+        length = following if newton else 0.5 * (before + beyond)
     if not reached:  # the step's start kept
         for i in range(corner.N):
             y[i] = y0[i]
@@ -635,6 +711,11 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
         raise RuntimeError(f"structure: the articulated slider's integration failed (its step fell below the "
                            f"smallest) in the sample interval at t = {time[k]:g} s; report the record and the "
                            f"structure")
+    if status == UNSPLIT:
+        raise RuntimeError(f"structure: a surface of the articulated slider yields in the sample interval at "
+                           f"t = {time[k]:g} s, but no split of the sliding balances the hinge unless that surface "
+                           f"slides backwards (the corner's algebraic condition, its share σ outside [0, 1]); report "
+                           f"the record and the structure")
     return u, v, u1, v1, phase, force, mu, temperature
 
 

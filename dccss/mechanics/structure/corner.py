@@ -274,7 +274,7 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, refresh, Z, work, gues
     where the system is stiff: keeping their factors, as RADAU5 does for a constant M, made more Newton
     iterations and rejected steps, 20 % more time in all). ``work`` holds the Jacobian, the factors and
     scratch arrays (``workspace``)."""
-    F, Mb, R, J, M0, E1, piv1, E2, piv2, y, scale, kk, cont, V, _, _, memo, F0 = work
+    F, Mb, R, J, M0, E1, piv1, E2, piv2, y, scale, kk, cont, V, _, _, memo, F0, _ = work
     fnewt = max(10.0 * 2.220446049250313e-16 / rtol, min(0.03, math.sqrt(rtol)))
     for i in range(N):
         scale[i] = atol + rtol * abs(y0[i])
@@ -368,12 +368,13 @@ def workspace():
     """The arrays of ``radau_step``: F, M, residuals, the Jacobian, M0, the two factors and their pivots,
     scratch; then the last accepted step's start and stages and (its length, whether the next step continues
     it, its error, Newton's convergence factor) (its caller's, for the next step's guess, Jacobian, length and
-    Newton); F at the step's start."""
+    Newton); F at the step's start; a trial step's stages, kept (its caller's, while it looks for an event)."""
     size = S * N
     memo = np.array([0.0, 0.0, 0.0, 1.0])
     return (np.zeros(N), np.zeros(4), np.zeros(size), np.zeros(N * N), np.zeros(4), np.zeros(N * N),
             np.zeros(N, dtype=np.int64), np.zeros(4 * N * N), np.zeros(2 * N, dtype=np.int64), np.zeros(N),
-            np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(size), np.zeros(N), np.zeros(size), memo, np.zeros(N))
+            np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(size), np.zeros(N), np.zeros(size), memo, np.zeros(N),
+            np.zeros(size))
 
 
 @scalar.jit
@@ -394,6 +395,26 @@ def dense(y0, Z, theta, i):
 
 
 @scalar.jit
+def turning(Z, i):
+    """The fractions of the step where component i of the collocation polynomial turns: the roots of its
+    derivative, a quadratic (each weight is θ (θ - a)(θ - b) over a constant); -1 where there is none."""
+    c1, c2 = C[0], C[1]
+    w1 = Z[i] / (c1 * (c1 - c2) * (c1 - 1.0))
+    w2 = Z[N + i] / (c2 * (c2 - c1) * (c2 - 1.0))
+    w3 = Z[2 * N + i] / ((1.0 - c1) * (1.0 - c2))
+    a = 3.0 * (w1 + w2 + w3)
+    b = -2.0 * (w1 * (c2 + 1.0) + w2 * (c1 + 1.0) + w3 * (c1 + c2))
+    c = w1 * c2 + w2 * c1 + w3 * c1 * c2
+    if a == 0.0:
+        return (-c / b if b != 0.0 else -1.0), -1.0
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        return -1.0, -1.0
+    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
+    return q / a, (c / q if q != 0.0 else -1.0)
+
+
+@scalar.jit
 def speed(y0, Z, theta):
     """|u̇| on the collocation polynomial at theta."""
     l1, l2, l3 = weights(theta)
@@ -407,7 +428,9 @@ def consistent(y, p, rows, t, F, M):
     """y[5] = σ made consistent where σ relaxes within a nanosecond (its column of M nearly zero: the surfaces'
     split decided by the algebraic condition, Coulomb friction along one line or a law that no longer changes
     with the speed): the root in [0, 1] of the first equation, by bisection. Elsewhere σ is kept (its
-    relaxation, a real transient, is integrated)."""
+    relaxation, a real transient, is integrated). 0, or where the first equation has the same sign at σ = 0 and
+    1 (no split of the sliding balances the hinge; σ kept), the side its root lies on (it is linear in σ at
+    δ = 0): -1 below 0 (surface 1 would slide backwards: it holds), 1 above 1 (surface 3 holds)."""
     sigma = y[5]
     system(t, y, p, rows, F, M)
     f = F[4]
@@ -418,11 +441,17 @@ def consistent(y, p, rows, t, F, M):
     y[5] = sigma
     system(t, y, p, rows, F, M)
     if slope == 0.0 or abs(M[1] / slope) > 1e-9:
-        return
+        return 0
     lo, hi = 0.0, 1.0
+    y[5] = hi
+    system(t, y, p, rows, F, M)
+    high = F[4]
     y[5] = lo
     system(t, y, p, rows, F, M)
     low = F[4]
+    if low * high > 0.0:
+        y[5] = sigma
+        return -1 if abs(low) < abs(high) else 1
     for _ in range(100):
         mid = 0.5 * (lo + hi)
         y[5] = mid
@@ -432,3 +461,4 @@ def consistent(y, p, rows, t, F, M):
         else:
             hi = mid
     y[5] = 0.5 * (lo + hi)
+    return 0
