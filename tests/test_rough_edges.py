@@ -176,3 +176,13 @@ def test_a_pga_study_runs_through_the_workflow(tmp_path):
     ds = xr.open_dataset(tmp_path / "results/studies/pga/pga.nc")
     assert ds.attrs["intensity_measure"] == "pga" and ds.sizes["record"] == 3
     assert np.allclose(ds["intensity_achieved"].values, [0.1, 0.3], rtol=1e-9)
+
+
+def test_a_threshold_on_a_pad_summary_is_refused_for_articulated_sliders_alone():
+    """Their pad summaries are NaN: a threshold on one would count nothing (it counted them as not exceeded)."""
+    config = _intensity_study(slider="articulated", structure={"friction": [0.03, 0.06], "friction_on": "surfaces"},
+                              fragility=[{"name": "tilt", "variable": "theta2_max_abs", "above": 10.0}])
+    with pytest.raises(StudyError, match=r"fragility\[0\].variable: 'theta2_max_abs' is not a summary of this study"):
+        Study.from_config(config, STUDIES)
+    Study.from_config({**config, "fragility": ["ring", {"name": "big", "variable": "stroke_1_max_abs",
+                                                        "above": 0.1}]}, STUDIES)

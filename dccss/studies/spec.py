@@ -399,6 +399,9 @@ def _summaries(structure, excitation, records, axes) -> dict:
     """{summary: whether the pad's run decides it} of a study's cases: the pad models', and its structure's
     (a vertical's, each surface's) where it has them."""
     out = dict.fromkeys(specs(), True)
+    if structure is not None and structure.slider == "articulated" and "slider" not in axes:
+        # no pad: its summaries are NaN but for the halves' ring (capacity) and the run's failure
+        out = {k: v for k, v in out.items() if k in ("capacity_exceeded", "capacity_time", "failed", "failure_time")}
     if structure is not None:
         out.update(dict.fromkeys(STRUCTURE_SUMMARIES, False))
         if any(has_vertical(e) for e in ({**records, "": excitation}).values()):
