@@ -158,26 +158,6 @@ def test_dccss_check_of_the_shipped_intensity_study_passes():
     assert "288 cases" in run.stdout
 
 
-@pytest.mark.slow
-def test_a_pga_study_runs_through_the_workflow(tmp_path):
-    """The workflow wrote the schema's defaults into the study it passes to its jobs: a PGA study's filled-in
-    Sa period was refused there ("intensity.period: a spectral acceleration's"), after its check had passed."""
-    import shutil
-
-    for name in ("Snakefile", "config", "workflow", "profiles"):
-        (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, tmp_path / name)
-    study = _intensity_study(study={"name": "pga"}, intensity={"measure": "pga"})
-    (tmp_path / "config/studies/pga.yaml").write_text(yaml.safe_dump(study))
-    run = subprocess.run([str(Path(sys.executable).parent / "snakemake"), "--profile", "profiles/default",
-                          "--configfile", "config/studies/pga.yaml"], cwd=tmp_path, capture_output=True, text=True)
-    assert run.returncode == 0, run.stderr[-3000:]
-    import xarray as xr
-
-    ds = xr.open_dataset(tmp_path / "results/studies/pga/pga.nc")
-    assert ds.attrs["intensity_measure"] == "pga" and ds.sizes["record"] == 3
-    assert np.allclose(ds["intensity_achieved"].values, [0.1, 0.3], rtol=1e-9)
-
-
 def test_a_threshold_on_a_pad_summary_is_refused_for_articulated_sliders_alone():
     """Their pad summaries are NaN: a threshold on one would count nothing (it counted them as not exceeded)."""
     config = _intensity_study(slider="articulated", structure={"friction": [0.03, 0.06], "friction_on": "surfaces"},
