@@ -4,7 +4,8 @@ On each sample interval the sliding equation ü + 2ζω u̇ + ω² u = -a_g - μ
 linear right-hand side, solved in closed form (a damped oscillator with a linear load); the ends of
 sliding (u̇ = 0) are roots of that closed form, found by bisection to the last bit; sticking ends where
 a straight line reaches ±μ g (exact). The solution is exact to rounding: no time step, no elastic
-branch.
+branch. A rest starts by asking whether the demand is already at or past the friction (``leaving``):
+where it reaches it at a sample, or within rounding of one, sliding starts there.
 
 ``line`` is written in the scalar subset Numba compiles, as the two-component kernel
 (``circular.plane``): compiled for a long record (or many, a spectrum's periods), interpreted for a
@@ -25,10 +26,6 @@ MAX_PHASES = 10_000
 LINE_WORK = 1
 #: a kernel's status: done, the friction chatters (MAX_PHASES), a step too short
 DONE, CHATTER, FAILED = 0, 1, 2
-
-
-#: stick/slip phases in one sample interval beyond which the solver gives up (a chatter it cannot resolve)
-MAX_PHASES = 10_000
 
 
 @scalar.jit
@@ -52,6 +49,12 @@ def first_stop(u0, v0, p0, p1, omega, zeta, sign, tau_end):
     left = 0.0
     for i in range(1, pieces + 1):
         right = tau_end * i / pieces
+        if left == 0.0 and v0 == 0.0 and sign * _start_acceleration(u0, p0, p1, omega, zeta, sign, right) >= 0.0:
+            # a start from rest, sign * ü >= 0 at both ends of the piece: ü changes sign at most once on a
+            # piece (``_start_acceleration``), so u̇ grows across it and does not stop, whatever the rounding
+            # of u̇ while it is still tiny (a piece ending just after the start, or a load growing by a few ulps)
+            left = right
+            continue
         if sign * slide(u0, v0, p0, p1, omega, zeta, right)[1] <= 0.0:
             return _bisect(u0, v0, p0, p1, omega, zeta, sign, left, right)
         # a dip to zero inside a piece: sign * ü changes from - to + within it (a start from rest
@@ -83,6 +86,17 @@ def _acceleration(u0, v0, p0, p1, omega, zeta, tau):
 
 
 @scalar.jit
+def _start_acceleration(u0, p0, p1, omega, zeta, sign, tau):
+    """ü at tau of a start from rest at u0 (u̇ = 0; sign * ü >= 0 there, as at a start, rounding aside): the
+    load being linear, ü obeys the unloaded oscillator, a damped sinusoid (its zeros π / ω_d apart) from ü(0)
+    and ü'(0) = p1 - 2ζω ü(0), in closed form without the rounding of u and u̇."""
+    a0 = sign * max(sign * (p0 - omega**2 * u0), 0.0)
+    wd = omega * math.sqrt(1.0 - zeta * zeta)
+    c, s = math.cos(wd * tau), math.sin(wd * tau)
+    return math.exp(-zeta * omega * tau) * (a0 * c + (p1 - zeta * omega * a0) / wd * s)
+
+
+@scalar.jit
 def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
     """The root of sign * u̇ in (lo, hi], where it is > 0 at lo (or lo = 0) and <= 0 at hi."""
     for _ in range(200):
@@ -94,6 +108,53 @@ def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
         else:
             hi = mid
     return hi
+
+
+@scalar.jit
+def leaving(demand, slope, lower, upper, past_upper, past_lower):
+    """The direction in which a rest under ``demand`` (m/s²), changing at ``slope`` (m/s³), ends at once:
+    +1 where it reaches ``upper`` and grows on, or lies past it and ``past_upper`` (a demand past the bound
+    starts sliding there); -1 likewise at ``lower``; 0: it holds."""
+    if demand >= upper and (slope > 0.0 or (past_upper and demand > upper)):
+        return 1.0
+    if demand <= lower and (slope < 0.0 or (past_lower and demand < lower)):
+        return -1.0
+    return 0.0
+
+
+@scalar.jit
+def rest_end(d0, d1, lower, upper, end):
+    """Where a rest under the demand d0 + d1 tau, held within [lower, upper], ends in [0, end), and the
+    direction sliding starts in: at once (0, ``leaving``) where the demand is at or past a bound and grows on,
+    else where the straight line reaches a bound (exact); (end, 0) where it holds to the end.
+
+    A rest starts where a stop or a sample has just found the demand within the bounds: one that lies past a
+    bound here, by the rounding of the demand taken again, and does not grow on, is held (a start would stop
+    again within that rounding, without the time moving on)."""
+    direction = leaving(d0, d1, lower, upper, False, False)
+    if direction != 0.0:
+        return 0.0, direction
+    if d1 > 0.0:
+        when = (upper - d0) / d1
+        if 0.0 < when < end:
+            return when, 1.0
+    elif d1 < 0.0:
+        when = (lower - d0) / d1
+        if 0.0 < when < end:
+            return when, -1.0
+    return end, 0.0
+
+
+@scalar.jit
+def slide_on(x, w, p0, p1, omega, zeta, sign, end, stops):
+    """Slide from (x, w) in the direction ``sign`` under the load p0 + p1 tau (``slide``) until u̇ falls to
+    0 (``first_stop``; only where the friction ``stops`` it) or to ``end``: (x, u̇, tau, stopped)."""
+    when = first_stop(x, w, p0, p1, omega, zeta, sign, end) if stops else -1.0
+    if when < 0.0:
+        x, w = slide(x, w, p0, p1, omega, zeta, end)
+        return x, w, end, False
+    x, _ = slide(x, w, p0, p1, omega, zeta, when)
+    return x, 0.0, when, True
 
 
 def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
@@ -118,58 +179,59 @@ def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
             b0, b1 = a0[k] + a1[k] * tau, a1[k]  # the ground's acceleration from tau on
             if not sliding:
                 # sticking: the demand -a_g - ω² u is a straight line in t; it ends at ±μ g
-                d0 = -b0 - omega**2 * x
-                end = h - tau
-                if b1 != 0.0:
-                    for level in (friction, -friction):
-                        when = (d0 - level) / b1
-                        if 0.0 < when < end:
-                            end = when
-                tau += end
-                if tau < h:
-                    sliding, sign = True, (1.0 if d0 - b1 * end > 0.0 else -1.0)
+                when, direction = rest_end(-b0 - omega**2 * x, -b1, -friction, friction, h - tau)
+                tau += when
+                if direction != 0.0:
+                    sliding, sign = True, direction
                 continue
-            force = sign * friction
-            p0, p1 = -b0 - force, -b1
-            end = h - tau
-            when = -1.0 if friction == 0.0 else first_stop(x, w, p0, p1, omega, zeta, sign, end)
-            if when < 0.0:
-                x, w = slide(x, w, p0, p1, omega, zeta, end)
+            x, w, when, stopped = slide_on(x, w, -b0 - sign * friction, -b1, omega, zeta, sign, h - tau,
+                                           friction > 0.0)
+            if not stopped:
                 tau = h
                 continue
-            x, _ = slide(x, w, p0, p1, omega, zeta, when)
-            w = 0.0
             tau += when
-            demand = -(b0 + b1 * when) - omega**2 * x
-            if abs(demand) <= friction:
+            # at the stop: a demand past the other bound reverses the motion; at or past the bound it moved
+            # towards, it goes on only where the demand grows on (else that is the rounding of the stop)
+            direction = leaving(-(b0 + b1 * when) - omega**2 * x, -b1, -friction, friction, sign < 0.0, sign > 0.0)
+            if direction == 0.0:
                 sliding = False
             else:
-                sign = math.copysign(1.0, demand)
+                sign = direction
         u[k + 1], v[k + 1] = x, w
-        b = a0[k] + a1[k] * h
+        demand = -(a0[k] + a1[k] * h) - omega**2 * x
+        if not sliding and abs(demand) > friction:
+            # past the friction at the sample, within rounding of it: sliding starts there
+            sliding, sign = True, math.copysign(1.0, demand)
         if sliding:
             stick[k + 1], z[k + 1] = False, (sign if friction > 0 else 0.0)
         else:
-            stick[k + 1], z[k + 1] = True, (-b - omega**2 * x) / friction
+            stick[k + 1], z[k + 1] = True, demand / friction
     return DONE, n - 1
 
 
 def line_history(time, a0, a1, omega, zeta, friction, compiled=None):
     """One-component history at the interval ends: u, u̇, z, sticking (``line``); ``compiled`` None:
     compiled for a long record (``backend``), interpreted for a short one."""
+    n = time.size
+    stick = np.zeros(n, dtype=bool)
+    return run_line(line, time, a0, a1, (omega, zeta, friction), (np.zeros(n), np.zeros(n), np.zeros(n), stick),
+                    compiled)
+
+
+def run_line(kernel, time, a0, a1, constants, history, compiled=None):
+    """Run a one-component exact kernel (``line``, ``series.series_line``) on the ground (time, a0, a1),
+    its constants (floats) and its ``history`` arrays, which it fills and this returns; ``compiled`` None:
+    compiled for a long record (``backend``), interpreted for a short one."""
     from .. import backend
 
-    n = time.size
     if compiled is None:
-        compiled = backend.choose(n - 1, LINE_WORK) == "numba"
-    run = scalar.kernel(line) if compiled else line
-    u, v, z = np.zeros(n), np.zeros(n), np.zeros(n)
-    stick = np.zeros(n, dtype=bool)
+        compiled = backend.choose(time.size - 1, LINE_WORK) == "numba"
+    run = scalar.kernel(kernel) if compiled else kernel
     status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
-                    np.ascontiguousarray(a1, dtype=float), float(omega), float(zeta), float(friction), u, v, z, stick)
+                    np.ascontiguousarray(a1, dtype=float), *(float(c) for c in constants), *history)
     if status == CHATTER:
         raise chatter(time[k])
-    return u, v, z, stick
+    return history
 
 
 def chatter(t) -> RuntimeError:

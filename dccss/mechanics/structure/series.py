@@ -19,8 +19,9 @@ damping from the nominal period, as the rigid slider's).
 Which surfaces slide is decided by the force (the thresholds T_j(z) = ω_j² u_j + z m_j):
 
 * **at rest** both hold while the demand d = -a_g lies in [max_j T_j(-1), min_j T_j(+1)]; it ends where
-  d, a straight line on a sample interval, reaches a bound (exact): the surface whose threshold it
-  reaches slides, both where their thresholds are equal (to 1e-12 of the larger m_j);
+  d, a straight line on a sample interval, reaches a bound (exact), or at once where it is at or past one
+  and growing (a bound reached at a sample, ``exact.rest_end``): the surface whose threshold it reaches
+  slides, both where their thresholds are equal (to 1e-12 of the larger m_j);
 * **one surface slides** (j), the other holds: a pendulum of length L_j, ü_j + 2ζω u̇_j + ω_j² u_j =
   -a_g - m_j z, solved in closed form; it ends where u̇ falls to 0 (a stop, then the rest test) or where
   F reaches the other surface's threshold, u_j = (ω_i² u_i + (m_i - m_j) z) / ω_j² (both then slide);
@@ -40,7 +41,7 @@ import math
 import numpy as np
 
 from .. import scalar
-from .exact import CHATTER, DONE, LINE_WORK, MAX_PHASES, chatter, first_stop, slide
+from .exact import CHATTER, DONE, MAX_PHASES, first_stop, leaving, rest_end, run_line, slide, slide_on
 
 #: a phase of the device: both surfaces hold, surface 1 slides alone, surface 3 alone, both slide
 STUCK, SLIDE1, SLIDE3, BOTH = 0, 1, 2, 3
@@ -63,16 +64,16 @@ def _starting(direction, up1, up3, lo1, lo3, m1, m3):
 
 
 @scalar.jit
-def _yielding(d, u1, u3, w1sq, w3sq, m1, m3):
-    """The phase at rest under the demand d (m/s²) and its direction: (STUCK, 0) while d is within both
-    surfaces' friction, else the phase starting (``_starting``)."""
+def _yielding(d, slope, past_upper, past_lower, u1, u3, w1sq, w3sq, m1, m3):
+    """The phase at rest under the demand d (m/s²), changing at ``slope`` (m/s³), and its direction: the
+    phase starting (``_starting``) where d leaves both surfaces' friction (``exact.leaving``: at or past a
+    bound and growing on, or past it where ``past_upper``, ``past_lower``), else (STUCK, 0)."""
     up1, up3 = w1sq * u1 + m1, w3sq * u3 + m3
     lo1, lo3 = w1sq * u1 - m1, w3sq * u3 - m3
-    if d > min(up1, up3):
-        return _starting(1.0, up1, up3, lo1, lo3, m1, m3), 1.0
-    if d < max(lo1, lo3):
-        return _starting(-1.0, up1, up3, lo1, lo3, m1, m3), -1.0
-    return STUCK, 0.0
+    direction = leaving(d, slope, max(lo1, lo3), min(up1, up3), past_upper, past_lower)
+    if direction == 0.0:
+        return STUCK, 0.0
+    return _starting(direction, up1, up3, lo1, lo3, m1, m3), direction
 
 
 @scalar.jit
@@ -103,7 +104,7 @@ def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, 
     n = len(time)
     r1 = w3sq / (w1sq + w3sq)  # L_1 / L: the share of the stroke surface 1 takes while both slide
     x, w, x1 = 0.0, 0.0, 0.0  # u, u̇, u_1
-    state, sign = _yielding(-a0[0], 0.0, 0.0, w1sq, w3sq, m1, m3)
+    state, sign = _yielding(-a0[0], 0.0, True, True, 0.0, 0.0, w1sq, w3sq, m1, m3)
     phase[0] = state
     force[0] = -a0[0] if state == STUCK else (m3 if state == SLIDE3 else m1) * sign
     for k in range(n - 1):
@@ -119,34 +120,22 @@ def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, 
                 # the demand -a_g is a straight line in t; rest ends where it leaves [lower, upper]
                 up1, up3 = w1sq * x1 + m1, w3sq * (x - x1) + m3
                 lo1, lo3 = w1sq * x1 - m1, w3sq * (x - x1) - m3
-                direction = 0.0
-                if b1 != 0.0:
-                    when = (-b0 - min(up1, up3)) / b1
-                    if 0.0 < when < end:
-                        end, direction = when, 1.0
-                    when = (-b0 - max(lo1, lo3)) / b1
-                    if 0.0 < when < end:
-                        end, direction = when, -1.0
-                tau += end
+                when, direction = rest_end(-b0, -b1, max(lo1, lo3), min(up1, up3), end)
+                tau += when
                 if direction != 0.0:
                     state, sign = _starting(direction, up1, up3, lo1, lo3, m1, m3), direction
                 continue
             if state == BOTH:
                 # g F/W = ω_1² u_1 + m_1 z, u_1 = x1 + r1 (u - x): ü + 2ζω u̇ + ω² u = -a_g - c0
                 c0 = w1sq * x1 - omega * omega * x + m1 * sign
-                p0, p1 = -b0 - c0, -b1
-                when = first_stop(x, w, p0, p1, omega, zeta, sign, end)
                 start = x
-                if when < 0.0:
-                    x, w = slide(x, w, p0, p1, omega, zeta, end)
-                    x1 += r1 * (x - start)
+                x, w, when, stopped = slide_on(x, w, -b0 - c0, -b1, omega, zeta, sign, end, True)
+                x1 += r1 * (x - start)
+                if not stopped:
                     tau = h
                     continue
-                x, _ = slide(x, w, p0, p1, omega, zeta, when)
-                x1 += r1 * (x - start)
-                w = 0.0
                 tau += when
-                state, sign = _yielding(-b0 - b1 * when, x1, x - x1, w1sq, w3sq, m1, m3)
+                state, sign = _yielding(-b0 - b1 * when, -b1, sign < 0.0, sign > 0.0, x1, x - x1, w1sq, w3sq, m1, m3)
                 continue
             # one surface slides (j), the other holds (i): y = u_j, ÿ + 2ζω ẏ + ω_j² y = -a_g - m_j z
             lower_slides = state == SLIDE1
@@ -176,10 +165,14 @@ def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, 
                 x1 = y
             tau += when
             if stopped:
-                state, sign = _yielding(-b0 - b1 * when, x1, x - x1, w1sq, w3sq, m1, m3)
-        u[k + 1], v[k + 1], u1[k + 1], phase[k + 1] = x, w, x1, state
+                state, sign = _yielding(-b0 - b1 * when, -b1, sign < 0.0, sign > 0.0, x1, x - x1, w1sq, w3sq, m1, m3)
+        u[k + 1], v[k + 1], u1[k + 1] = x, w, x1
+        b = a0[k] + a1[k] * h
+        if state == STUCK:  # past a threshold at the sample, within rounding of it: sliding starts there
+            state, sign = _yielding(-b, 0.0, True, True, x1, x - x1, w1sq, w3sq, m1, m3)
+        phase[k + 1] = state
         if state == STUCK:
-            force[k + 1] = -(a0[k] + a1[k] * h)
+            force[k + 1] = -b
         elif state == SLIDE3:
             force[k + 1] = w3sq * (x - x1) + m3 * sign
         else:
@@ -191,20 +184,9 @@ def series_line_history(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, compiled=
     """One-component history of an articulated slider at the interval ends: u, u̇, u_1, the phase and
     g F/W (``series_line``); ``compiled`` None: compiled for a long record (``backend``), interpreted
     for a short one."""
-    from .. import backend
-
     n = time.size
-    if compiled is None:
-        compiled = backend.choose(n - 1, LINE_WORK) == "numba"
-    run = scalar.kernel(series_line) if compiled else series_line
-    u, v, u1, force = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-    phase = np.zeros(n, dtype=np.int64)
-    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
-                    np.ascontiguousarray(a1, dtype=float), float(w1sq), float(w3sq), float(omega), float(zeta),
-                    float(m1), float(m3), u, v, u1, phase, force)
-    if status == CHATTER:
-        raise chatter(time[k])
-    return u, v, u1, phase, force
+    history = (np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.int64), np.zeros(n))
+    return run_line(series_line, time, a0, a1, (w1sq, w3sq, omega, zeta, m1, m3), history, compiled)
 
 
 def quasi_static(u, L1, L3, m1, m3):
