@@ -29,9 +29,11 @@ import math
 import numpy as np
 
 from .. import scalar
-from ..friction import FACTOR, KIND, MU, RATIO, WEIGHT, device_mu, surface_mu
+from ..friction import FACTOR, KIND, MU, RATIO, T0, WEIGHT, device_mu, surface_mu
 from . import corner
-from .circular import breakaway
+from .corner import (B0X, B0Y, B1X, B1Y, CONTRACTION, DAMPING, ERROR, GOES_ON, GRAVITY, KEPT, LAST, LENGTH1, LENGTH3,
+                     MASS, MEMO, N0, N1, PARAMETERS, PREVIOUS, RHS, SPAN, TEMPERATURE1, TEMPERATURE3)
+from .circular import HEATED, breakaway
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
 from .heat import plate_temperature
 from .inputs import G
@@ -132,16 +134,16 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
     n = time.size
     L = L1 + L3
     hold = 1.0 + rtol
-    heats = rows[0][0] == 3.0 or rows[1][0] == 3.0
-    t1, t3 = rows[0][17], rows[1][17]
+    heats = rows[0][KIND] == HEATED or rows[1][KIND] == HEATED
+    t1, t3 = rows[0][T0], rows[1][T0]
     temperature[0, 0], temperature[0, 1] = t1, t3
     x0, x1, w0, w1, q0, q1 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # u, u̇, u_1
     delta, sigma = 0.0, 0.0
     state, starting = STUCK, False
     h_next, h_radau = 0.0, 0.0
     heated, since = 0, 0
-    p = np.zeros(12)
-    p[0], p[1], p[2], p[3] = L1, L3, g, damp
+    p = np.zeros(PARAMETERS)
+    p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING] = L1, L3, g, damp
     m = max(n0[0], 0.0)
     if m > 0.0:
         state = _rest(-a0[0, 0] / (g * m), -a0[0, 1] / (g * m), 0.0, 0.0, 0.0, 0.0,
@@ -152,7 +154,7 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
     for k in range(n - 1):
         h = time[k + 1] - time[k]
         tau, phases = 0.0, 0
-        p[10], p[11] = t1, t3
+        p[TEMPERATURE1], p[TEMPERATURE3] = t1, t3
         while tau < h:
             phases += 1
             if phases > MAX_PHASES:
@@ -244,8 +246,8 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                 z1x, z1y, z3x, z3y = (ex, ey, zix, ziy) if lower else (zix, ziy, ex, ey)
                 delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
                 y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, 1.0 if lower else 0.0
-                p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
-                held = corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
+                held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
                 if held == (1 if lower else -1):  # the surface that yields would slide backwards
                     return UNSPLIT, k
                 sigma = y6[5]
@@ -304,21 +306,22 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
                                               w1 / speed, c1m, c3m, L1, L3)
                 if state == BOTH:
                     y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
-                    p[4], p[5], p[6], p[7], p[8], p[9] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
-                    held = corner.consistent(y6, p, rows, 0.0, work[0], work[1])
+                    p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = (b00 + b10 * when, b01 + b11 * when, b10, b11, mm,
+                                                                    m1)
+                    held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
                     sigma = y6[5]
                     if held != 0:  # no split balances the hinge: the surface that would slide backwards holds
                         state = SLIDE3 if held < 0 else SLIDE1
                 starting, h_radau, h_next = False, 0.0, 0.0
                 continue
             y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
-            p[4], p[5], p[6], p[7], p[8], p[9] = b00, b01, b10, b11, m0, m1
+            p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00, b01, b10, b11, m0, m1
             ended, when, h_radau = _both(y6, ys, end, h_radau, p, rows, k6, work, Z)
             if ended == TOO_SHORT:
                 return FAILED, k
             x0, x1, w0, w1, delta, sigma = y6[0], y6[1], y6[2], y6[3], y6[4], y6[5]
-            shape = corner.shape(y6, p, rows, when)
-            q0, q1 = L1 * (shape[9] - shape[7] * shape[1]), L1 * (shape[10] - shape[7] * shape[2])
+            _, z1x, z1y, _, _, _, _, mu1, _, fx, fy = corner.shape(y6, p, rows, when)
+            q0, q1 = L1 * (fx - mu1 * z1x), L1 * (fy - mu1 * z1y)
             tau += when
             if ended == NONE:
                 tau = h
@@ -337,10 +340,10 @@ def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, 
             temperature[k + 1, 0], temperature[k + 1, 1] = t1, t3
             if samples[k + 1] or k + 2 == n:  # the end of a heat interval
                 normal = max(0.5 * (n0[since] + m), 0.0)
-                if rows[0][0] == 3.0:
+                if rows[0][KIND] == HEATED:
                     t1 = plate_temperature(heated, time[since], time[k + 1], u1[since, 0], u1[since, 1], q0, q1,
                                            normal, rows[0], 0, heat, temperature, k + 1)
-                if rows[1][0] == 3.0:
+                if rows[1][KIND] == HEATED:
                     t3 = plate_temperature(heated, time[since], time[k + 1], u[since, 0] - u1[since, 0],
                                            u[since, 1] - u1[since, 1], x0 - q0, x1 - q1, normal, rows[1], 1, heat,
                                            temperature, k + 1)
@@ -368,12 +371,12 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
     a sample interval's end too, where the phase goes on (``work``'s memo says so: a new phase (h <= 0)
     starts afresh)."""
     t = 0.0
-    F, Mb = work[0], work[1]
-    last, previous, memo = work[14], work[15], work[16]  # the last accepted step: start, stages, (length, goes on)
+    F, Mb = work[RHS], work[MASS]
+    last, previous, memo = work[LAST], work[PREVIOUS], work[MEMO]  # the last accepted step
     if h <= 0.0:
         h = min(RADAU_FIRST, end)
-        memo[1], memo[3] = 0.0, 1.0
-    goes_on = memo[1] != 0.0
+        memo[GOES_ON], memo[CONTRACTION] = 0.0, 1.0
+    goes_on = memo[GOES_ON] != 0.0
     if not goes_on:
         corner.system(t, y, p, rows, F, Mb)
         for i in range(4):
@@ -381,7 +384,7 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
         k0[4], k0[5] = 0.0, 0.0
     # RADAU5's second error estimate (filtering the stiff components) on the interval's first step, where
     # the ground's jerk jumps (σ's fast relaxation takes up the change), and after a rejected step
-    first, refresh, guessed, span = True, 1 if goes_on else 2, goes_on, memo[0]  # factors afresh
+    first, refresh, guessed, span = True, 1 if goes_on else 2, goes_on, memo[SPAN]  # factors afresh
     current = False  # whether the Jacobian is the one at the step's start
     while t < end:
         taken = min(h, end - t)
@@ -416,12 +419,12 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             # σ out of [0, 1] inside the step alone (before any stop), back by its end: a surface stopping, where
             # a step to it goes past it (σ's fast relaxation, stiff, makes the polynomial overshoot inside the
             # step, where only its end is accurate: then the trial step stands)
-            kept, faccon = work[18], memo[3]
+            kept, faccon = work[KEPT], memo[CONTRACTION]
             for i in range(corner.S * corner.N):
                 kept[i] = Z[i]
             reached, length, seen = _to_event(YIELD, 1.0, True, t, y, y0, taken, p, rows, k0, work, Z)
             if reached:
-                memo[1] = 0.0
+                memo[GOES_ON] = 0.0
                 return YIELD, t + length, h
             if seen >= 0.0:  # the step to it too long for the tolerance: a shorter one, then look again
                 quotient = max(1.0 / 8.0, min(5.0, seen ** 0.25 / factor))
@@ -429,7 +432,7 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
                 continue
             for i in range(corner.S * corner.N):
                 Z[i] = kept[i]
-            memo[3] = faccon
+            memo[CONTRACTION] = faccon
         event = NONE
         if stops:
             event = STOP
@@ -438,7 +441,7 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
         if event != NONE:
             reached, length, error = _to_event(event, bound, False, t, y, y0, taken, p, rows, k0, work, Z)
             if reached:
-                memo[1] = 0.0
+                memo[GOES_ON] = 0.0
                 return event, t + length, h
             error = 2.0 ** 4 if error < 0.0 else error
             # the step to it is too long for the tolerance: a shorter one, then look again
@@ -449,9 +452,10 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
             h, refresh, first, guessed = taken / quotient, (1 if current else 2), True, False
             continue
         if guessed:  # Gustafsson's predictive control (RADAU5's), from the last accepted step
-            quotient = max(quotient, max(1.0 / 8.0, min(5.0, span / taken * (error * error / memo[2]) ** 0.25 / 0.9)))
-        memo[2] = max(1e-2, error)
-        memo[3] = max(memo[3], 2.220446049250313e-16) ** 0.8
+            quotient = max(quotient, max(1.0 / 8.0, min(5.0, span / taken * (error * error / memo[ERROR]) ** 0.25
+                                                        / 0.9)))
+        memo[ERROR] = max(1e-2, error)
+        memo[CONTRACTION] = max(memo[CONTRACTION], 2.220446049250313e-16) ** 0.8
         first = False
         for i in range(corner.N):
             y[i] = y0[i] + Z[2 * corner.N + i]
@@ -464,7 +468,7 @@ def _both(y, y0, end, h, p, rows, k0, work, Z):
         t += taken
         current, guessed, span = False, True, taken
         h, refresh = taken / quotient, (1 if theta <= THETA else 2)
-        memo[0], memo[1] = span, 1.0 if refresh < 2 else 0.0  # a new Jacobian next: start the next phase afresh
+        memo[SPAN], memo[GOES_ON] = span, 1.0 if refresh < 2 else 0.0  # a new Jacobian next: the next phase afresh
     return NONE, end, h
 
 
@@ -632,20 +636,20 @@ def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, 
     phase[k] = state
     v1[k, 0], v1[k, 1] = (w0, w1) if state == SLIDE1 else (0.0, 0.0)
     speed = math.sqrt(w0 * w0 + w1 * w1)
-    L1, L3 = p[0], p[1]
+    L1, L3 = p[LENGTH1], p[LENGTH3]
     if state == STUCK:
         force[k, 0], force[k, 1] = dx / g, dy / g
-        mu[k, 0] = rows[0][3] * surface_mu(rows[0], 0.0, m, t1)
-        mu[k, 1] = rows[1][3] * surface_mu(rows[1], 0.0, m, t3)
+        mu[k, 0] = rows[0][FACTOR] * surface_mu(rows[0], 0.0, m, t1)
+        mu[k, 1] = rows[1][FACTOR] * surface_mu(rows[1], 0.0, m, t3)
         return
     if state == BOTH and speed > 0.0:
         y[0], y[1], y[2], y[3], y[4], y[5] = x0, x1, w0, w1, delta, sigma
-        p[8], p[9] = m, 0.0
+        p[N0], p[N1] = m, 0.0
         n, z1x, z1y, z3x, z3y, s1, s3, m1, m3, fx, fy = corner.shape(y, p, rows, 0.0)
         force[k, 0], force[k, 1] = m * fx, m * fy
         v1[k, 0], v1[k, 1] = s1 * z1x, s1 * z1y
-        mu[k, 0] = rows[0][3] * surface_mu(rows[0], rows[0][2] * s1, m, t1)
-        mu[k, 1] = rows[1][3] * surface_mu(rows[1], rows[1][2] * s3, m, t3)
+        mu[k, 0] = rows[0][FACTOR] * surface_mu(rows[0], rows[0][RATIO] * s1, m, t1)
+        mu[k, 1] = rows[1][FACTOR] * surface_mu(rows[1], rows[1][RATIO] * s3, m, t3)
         return
     lower = state == SLIDE1 or state == BOTH
     j = 0 if lower else 1
@@ -653,11 +657,11 @@ def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, 
     yx, yy = (q0, q1) if lower else (x0 - q0, x1 - q1)
     ex, ey = (w0 / speed, w1 / speed) if speed > 0.0 else (0.0, 0.0)
     tj = t1 if lower else t3
-    cj = rows[j][1] * rows[j][3] * surface_mu(rows[j], rows[j][2] * speed, m, tj)
+    cj = rows[j][WEIGHT] * rows[j][FACTOR] * surface_mu(rows[j], rows[j][RATIO] * speed, m, tj)
     force[k, 0], force[k, 1] = m * (yx / Lj + cj * ex), m * (yy / Lj + cj * ey)
-    mu[k, j] = rows[j][3] * surface_mu(rows[j], rows[j][2] * speed, m, tj)
+    mu[k, j] = rows[j][FACTOR] * surface_mu(rows[j], rows[j][RATIO] * speed, m, tj)
     i = 1 - j
-    mu[k, i] = rows[i][3] * surface_mu(rows[i], 0.0, m, t3 if i == 1 else t1)
+    mu[k, i] = rows[i][FACTOR] * surface_mu(rows[i], 0.0, m, t3 if i == 1 else t1)
 
 
 #: the cost of a sample interval interpreted, in the planar kernels' case-steps (``backend.choose``)
@@ -682,7 +686,7 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
         n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
     n = time.size
     rows = np.ascontiguousarray(rows, dtype=float)
-    heats = bool(np.any(rows[:, 0] == 3.0))
+    heats = bool(np.any(rows[:, KIND] == HEATED))
     if compiled is None:
         compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
     run = scalar.kernel(articulated) if compiled else articulated
@@ -755,7 +759,7 @@ def respond(ground, times, geometry, structure) -> Response:
         u, v, u1, v1, phase, force, mu, temperature = articulated_history(
             refined, L1, L3, structure.damping, rows, structure.rows(geometry), np.isin(refined.time, ground.time))
         u, v, u1, v1, force = (x[:, :components] for x in (u, v, u1, v1, force))
-        if not np.any(rows[:, 0] == 3.0):
+        if not np.any(rows[:, KIND] == HEATED):
             temperature = None
     normal = refined.normal()
     load = np.maximum(normal, 0.0)[:, None]

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .. import scalar
-from ..friction import ROW, device_mu
+from ..friction import KIND, ROW, T0, TEMPERATURE, device_mu
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES, chatter
 from .heat import plate_temperatures
 from .inputs import G, Ground
@@ -35,6 +35,8 @@ from .integrator import (
     tableau,
 )
 
+#: the kind of a law whose friction follows the plates' temperatures (a row's KIND)
+HEATED = float(TEMPERATURE.kind)
 #: the cost of a sample interval interpreted, in the planar kernels' case-steps (``backend.choose``):
 #: about 0.5 ms
 INTERVAL_WORK = 25
@@ -108,8 +110,8 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
     hold = 1.0 + rtol
     heats = False  # a law whose friction follows the plates' temperatures
     for s in range(len(law)):
-        temperature[0, s] = law[s][17]
-        heats = heats or law[s][0] == 3.0
+        temperature[0, s] = law[s][T0]
+        heats = heats or law[s][KIND] == HEATED
     t0, t1 = temperature[0, 0], temperature[0, 1]
     m = max(n0[0], 0.0)
     rest = device_mu(law, 0.0, m, t0, t1)
@@ -221,7 +223,7 @@ def plane_history(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT
         n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
     n = time.size
     if compiled is None:  # the plates' heat sums over the intervals before: about n / 200 case-steps more each
-        heats = bool(np.any(np.asarray(law)[:, 0] == 3.0))
+        heats = bool(np.any(np.asarray(law)[:, KIND] == HEATED))
         compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
     run = scalar.kernel(plane) if compiled else plane
     work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))

@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from .. import scalar
-from ..friction import surface_mu, surface_mu_slopes
+from ..friction import FACTOR, RATIO, WEIGHT, surface_mu, surface_mu_slopes
 
 #: the state's size (u, u̇, δ, σ) and the stages
 N, S = 6, 3
@@ -63,6 +63,16 @@ DD = np.array([-(13.0 + 7.0 * SQ6) / 3.0, (-13.0 + 7.0 * SQ6) / 3.0, -1.0 / 3.0]
 GAMMA = 1.0 / ((6.0 + 81.0 ** (1.0 / 3.0) - 9.0 ** (1.0 / 3.0)) / 30.0)
 #: Newton: at most this many iterations a step
 NEWTON = 7
+#: the entries of a phase's parameters p (``system``): the pendulums L_1 and L_3, g, 2ζω, the ground's
+#: acceleration b0 + b1 t (from the phase's origin), N/W = n0 + n1 t and the surfaces' temperatures (°C)
+LENGTH1, LENGTH3, GRAVITY, DAMPING, B0X, B0Y, B1X, B1Y, N0, N1, TEMPERATURE1, TEMPERATURE3 = range(12)
+PARAMETERS = 12
+#: the slots of ``workspace`` its callers use: F and M's (δ, σ) block (scratch), the last accepted step's start
+#: and stages, its memo and a trial step's stages kept
+RHS, MASS, LAST, PREVIOUS, MEMO, KEPT = 0, 1, 14, 15, 16, 18
+#: the memo's entries: the last accepted step's length, whether the next step goes on from it (1) or starts
+#: afresh (0), its error, Newton's convergence factor
+SPAN, GOES_ON, ERROR, CONTRACTION = range(4)
 
 
 @scalar.jit
@@ -78,18 +88,18 @@ def sincs(x, s, c):
 def coefficient(r, s, n, T):
     """A surface's force-level coefficient μ̄ = weight λ μ(ratio s) at its hinge speed s = |u̇_j| (m/s), N/W n
     and temperature T (°C) (its law's row r: weight R^j / L_j, ratio R^j / L_j), and dμ̄/ds, dμ̄/dn."""
-    scale = r[1] * r[3]
-    mu = surface_mu(r, r[2] * s, n, T)
-    ds, dn = surface_mu_slopes(r, r[2] * s, n, T)
-    return scale * mu, scale * r[2] * ds, scale * dn
+    scale = r[WEIGHT] * r[FACTOR]
+    mu = surface_mu(r, r[RATIO] * s, n, T)
+    ds, dn = surface_mu_slopes(r, r[RATIO] * s, n, T)
+    return scale * mu, scale * r[RATIO] * ds, scale * dn
 
 
 @scalar.jit
 def shape(y, p, rows, t):
     """What the state y = (u, u̇, δ, σ) at t says: (n, z1x, z1y, z3x, z3y, s1, s3, μ̄1, μ̄3, fx, fy): N/W, the
     surfaces' friction directions and hinge speeds, their coefficients and f = F/W / (N/W)."""
-    L1, L3 = p[0], p[1]
-    n = max(p[8] + p[9] * t, 0.0)
+    L1, L3 = p[LENGTH1], p[LENGTH3]
+    n = max(p[N0] + p[N1] * t, 0.0)
     sp = math.sqrt(y[2] * y[2] + y[3] * y[3])
     ex, ey = y[2] / sp, y[3] / sp
     delta, sigma = y[4], y[5]
@@ -100,8 +110,8 @@ def shape(y, p, rows, t):
     sd = sincs(delta, sa1 * ca3 + ca1 * sa3, ca1 * ca3 - sa1 * sa3)[0]
     s1 = sp * sigma * sincs(a1, sa1, ca1)[0] / sd
     s3 = sp * (1.0 - sigma) * sincs(a3, sa3, ca3)[0] / sd
-    m1 = coefficient(rows[0], s1, n, p[10])[0]
-    m3 = coefficient(rows[1], s3, n, p[11])[0]
+    m1 = coefficient(rows[0], s1, n, p[TEMPERATURE1])[0]
+    m3 = coefficient(rows[1], s3, n, p[TEMPERATURE3])[0]
     L = L1 + L3
     fx = (y[0] + L1 * m1 * z1x + L3 * m3 * z3x) / L
     fy = (y[1] + L1 * m1 * z1y + L3 * m3 * z3y) / L
@@ -113,10 +123,10 @@ def system(t, y, p, rows, F, M):
     """F(y, t) (6) and the 2 x 2 block M of (δ, σ) (row-major, 4) of M(y) ẏ = F at t (from the phase's
     origin); p = (L1, L3, g, 2ζω, b0x, b0y, b1x, b1y, n0, n1, T1, T3), the ground's acceleration
     b0 + b1 t and N/W = n0 + n1 t (0 where negative); ``rows`` the surfaces' laws (1, 3)."""
-    L1, L3, g, damp = p[0], p[1], p[2], p[3]
-    raw = p[8] + p[9] * t
+    L1, L3, g, damp = p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING]
+    raw = p[N0] + p[N1] * t
     n = max(raw, 0.0)
-    dn = p[9] if raw > 0.0 else 0.0
+    dn = p[N1] if raw > 0.0 else 0.0
     sp = math.sqrt(y[2] * y[2] + y[3] * y[3])
     ex, ey = y[2] / sp, y[3] / sp
     qx, qy = -ey, ex
@@ -132,13 +142,13 @@ def system(t, y, p, rows, F, M):
     k3, dk3 = sincs(a3, sa3, ca3)
     q1, q3 = k1 / sd, k3 / sd
     s1, s3 = sp * sigma * q1, sp * (1.0 - sigma) * q3
-    m1, m1s, m1n = coefficient(rows[0], s1, n, p[10])
-    m3, m3s, m3n = coefficient(rows[1], s3, n, p[11])
+    m1, m1s, m1n = coefficient(rows[0], s1, n, p[TEMPERATURE1])
+    m3, m3s, m3n = coefficient(rows[1], s3, n, p[TEMPERATURE3])
     L = L1 + L3
     fx = (y[0] + L1 * m1 * z1x + L3 * m3 * z3x) / L
     fy = (y[1] + L1 * m1 * z1y + L3 * m3 * z3y) / L
-    accx = -(p[4] + p[6] * t) - damp * y[2] - g * n * fx
-    accy = -(p[5] + p[7] * t) - damp * y[3] - g * n * fy
+    accx = -(p[B0X] + p[B1X] * t) - damp * y[2] - g * n * fx
+    accy = -(p[B0Y] + p[B1Y] * t) - damp * y[3] - g * n * fy
     dsp = ex * accx + ey * accy  # d|u̇|/dt
     dphi = (qx * accx + qy * accy) / sp  # how fast u̇ turns
     # the hinge speeds' derivatives: ṡ_j = (∂s_j/∂|u̇|) d|u̇|/dt + (∂s_j/∂σ) σ̇ + (∂s_j/∂δ) δ̇
@@ -288,9 +298,9 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, refresh, Z, work, gues
             for j in range(N):
                 Z[i * N + j] = C[i] * h * k0[j]
     # RADAU5's Newton: converged where the contraction's bound θ / (1 - θ) times the last increment is below
-    # fnewt, θ from this step's iterations, on the first from the steps before (memo[3], its caller's)
+    # fnewt, θ from this step's iterations, on the first from the steps before (its caller's memo)
     previous, theta, ratio, iterations = 0.0, 0.0, 0.0, 0
-    faccon = memo[3]
+    faccon = memo[CONTRACTION]
     converged = False
     while iterations < NEWTON:
         iterations += 1
@@ -333,7 +343,7 @@ def radau_step(t0, y0, h, p, rows, k0, rtol, atol, first, refresh, Z, work, gues
         if faccon * norm <= fnewt and (iterations > 1 or norm <= 1e-3 * fnewt):
             converged = True
             break
-    memo[3] = faccon
+    memo[CONTRACTION] = faccon
     if not converged:
         return 1, 0.0, iterations, theta
     # RADAU5's error estimate: (γ/h M0 - J)^-1 (F(y0) + M0 (dd Z) / h), F(y0) kept from the step's start

@@ -39,6 +39,11 @@ NONE, STOP, MOVING, HELD, TOO_SHORT, YIELD = 0, 1, 2, 3, 4, 5
 SAFETY, MIN_FACTOR, MAX_FACTOR, EXPONENT = 0.9, 0.2, 10.0, -1.0 / 8.0
 #: a step shorter than this (s) is a failure; an event is located to within BRACKET (s)
 MIN_STEP, BRACKET = 1e-14, 4 * 2.220446049250313e-16
+#: the entries of a slide's ``load``: the ground's acceleration b0 + b1 t (from the slide's start), ω² (g / L_j for
+#: an articulated slider's surface), 2ζω, the friction's scale (μ g, or g under a law), N/W = n0 + n1 t, the
+#: surfaces' temperatures; an articulated slider's surface sliding alone: the other's p_i = u_i / L_i and temperature
+GROUND_X, GROUND_Y, JERK_X, JERK_Y, STIFFNESS, DAMPING, FRICTION, NORMAL, NORMAL_RATE, TEMPERATURE0, TEMPERATURE1, \
+    OTHER_X, OTHER_Y, OTHER_TEMPERATURE = range(14)
 
 
 def dop853_coefficients():
@@ -75,23 +80,24 @@ def tableau(compiled):
 @scalar.jit
 def normal_ratio(t, load):
     """N/W at t (from the slide's start): n0 + n1 t, 0 where the superstructure lifts off."""
-    return max(load[7] + load[8] * t, 0.0)
+    return max(load[NORMAL] + load[NORMAL_RATE] * t, 0.0)
 
 
 @scalar.jit
 def law_coefficient(t, y, load, law):
     """The friction law's coefficient at t (from the slide's start) and y: exactly 1 for Coulomb friction
-    (whose μ g is load[6]); a law's μ at the speed |u̇|, N/W and the surfaces' temperatures load[9:11]."""
+    (whose μ g is load[FRICTION]); a law's μ at the speed |u̇|, N/W and the surfaces' temperatures."""
     speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
-    return device_mu(law, speed, normal_ratio(t, load), load[9], load[10])
+    return device_mu(law, speed, normal_ratio(t, load), load[TEMPERATURE0], load[TEMPERATURE1])
 
 
 @scalar.jit
 def demand(t, y, load):
     """f = -a_g - ω² (N/W) u at t (from the slide's start) and y, the ground's acceleration from there
-    b0 + b1 t; load = (b0x, b0y, b1x, b1y, ω², 2ζω, μ g, n0, n1), N/W = n0 + n1 t."""
+    b0 + b1 t (``load``)."""
     n = normal_ratio(t, load)
-    return -(load[0] + load[2] * t) - load[4] * n * y[0], -(load[1] + load[3] * t) - load[4] * n * y[1]
+    return (-(load[GROUND_X] + load[JERK_X] * t) - load[STIFFNESS] * n * y[0],
+            -(load[GROUND_Y] + load[JERK_Y] * t) - load[STIFFNESS] * n * y[1])
 
 
 @scalar.jit
@@ -100,7 +106,7 @@ def _rhs(t, y, row, K, load, law, start):
     rest; a ``start`` of CAPPED takes the friction at most |f|: a slide from rest never starts against the
     force, where its state puts the force a rounding short of the friction)."""
     f0, f1 = demand(t, y, load)
-    friction = load[6] * law_coefficient(t, y, load, law) * normal_ratio(t, load)
+    friction = load[FRICTION] * law_coefficient(t, y, load, law) * normal_ratio(t, load)
     d0, d1 = (f0, f1) if start else (y[2], y[3])
     size = math.sqrt(d0 * d0 + d1 * d1)
     if start == CAPPED and friction > size:
@@ -110,8 +116,8 @@ def _rhs(t, y, row, K, load, law, start):
     at = row * SIZE
     K[at] = y[2]
     K[at + 1] = y[3]
-    K[at + 2] = f0 - load[5] * y[2] - friction * d0
-    K[at + 3] = f1 - load[5] * y[3] - friction * d1
+    K[at + 2] = f0 - load[DAMPING] * y[2] - friction * d0
+    K[at + 3] = f1 - load[DAMPING] * y[3] - friction * d1
 
 
 @scalar.jit
@@ -177,7 +183,7 @@ def _first_step(y, end, K, trial, load, law, start, rtol, atol):
 def _g(event, t, y, load, law, start, other):
     """The event's function: |u̇| - REST_SPEED (STOP), |u̇| - START_SPEED (MOVING), |f| - μ g N/W (HELD),
     |F/N - p_i| - μ̄_i (YIELD: one surface of an articulated slider slides, y its own displacement u_j,
-    ``load[4]`` g / L_j; the other's p_i = u_i / L_i is load[11:13], its temperature load[13], its law
+    ``load``'s STIFFNESS g / L_j, the other's p_i = u_i / L_i and temperature in it, its law
     ``other``, at zero speed)."""
     if event == YIELD:
         if start:
@@ -188,13 +194,15 @@ def _g(event, t, y, load, law, start, other):
         if size > 0.0:
             d0, d1 = d0 / size, d1 / size
         coef = law_coefficient(t, y, load, law)
-        f0 = y[0] * load[4] / load[6] + coef * d0 - load[11]
-        f1 = y[1] * load[4] / load[6] + coef * d1 - load[12]
+        f0 = y[0] * load[STIFFNESS] / load[FRICTION] + coef * d0 - load[OTHER_X]
+        f1 = y[1] * load[STIFFNESS] / load[FRICTION] + coef * d1 - load[OTHER_Y]
         n = normal_ratio(t, load)
-        return math.sqrt(f0 * f0 + f1 * f1) - device_mu(other, 0.0, n, load[13], load[13])
+        ti = load[OTHER_TEMPERATURE]
+        return math.sqrt(f0 * f0 + f1 * f1) - device_mu(other, 0.0, n, ti, ti)
     if event == HELD:
         f0, f1 = demand(t, y, load)
-        return math.sqrt(f0 * f0 + f1 * f1) - load[6] * law_coefficient(t, y, load, law) * normal_ratio(t, load)
+        return (math.sqrt(f0 * f0 + f1 * f1)
+                - load[FRICTION] * law_coefficient(t, y, load, law) * normal_ratio(t, load))
     speed = math.sqrt(y[2] * y[2] + y[3] * y[3])
     return speed - (REST_SPEED if event == STOP else START_SPEED)
 
