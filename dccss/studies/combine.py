@@ -131,8 +131,8 @@ def intensity_levels(study) -> dict:
     what = i.label(study.excitation.components == 2)
     si = "m s-2" if i.measure != "pgv" else "m s-1"
     out = {"intensity_factor": xr.Variable(dims, shape(factors), {
-               "units": "1", "long_name": f"the factor the record runs at to reach the level of {what}: the level in SI "
-                                         f"units ({si}) over record_intensity"}),
+               "units": "1", "long_name": f"the factor the record runs at to reach the level of {what}: the level "
+                                         f"in SI units ({si}) over record_intensity"}),
            "intensity_achieved": xr.Variable(dims, shape(achieved), {
                "units": "1" if i.measure != "pgv" else "m s-1",
                "long_name": f"{what} of the record as it runs (read at its factor), in the levels' units"})}

@@ -852,8 +852,8 @@ def _draw_lines(axs, ds, drawn, marks, variables, models, bounds=False):
                               label=_value_text(ds, "property", bound)) for b, bound in
                        enumerate(labels)])
     if crowd:
-        legend.append([Line2D([], [], color="0.4", lw=0.8, **SUITE_RECORDS, label=f"each of the {len(groups)} "
-                                                                                  f"records" + ", at each bound" * bounds)])
+        label = f"each of the {len(groups)} records" + ", at each bound" * bounds
+        legend.append([Line2D([], [], color="0.4", lw=0.8, **SUITE_RECORDS, label=label)])
         cap_label, fail_label = _flag_labels(ds, models, drawn + ["property"] * bounds)
         return legend + ([_suite_handles(bounds="property" in ds.dims and not bounds)] if "statistic" in ds.coords
                          else []) + [
@@ -863,7 +863,8 @@ def _draw_lines(axs, ds, drawn, marks, variables, models, bounds=False):
                               label=_value_text(ds, drawn[1], group)) for g, group in enumerate(groups)])
     if "statistic" in ds.coords:
         legend.append(_suite_handles(bounds="property" in ds.dims and not bounds))
-    if not bounds and any(f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims for name, *_ in variables):
+    if not bounds and any(f"{name}_envelope" in ds and "record" not in ds[f"{name}_envelope"].dims
+                          for name, *_ in variables):
         legend.append([Line2D([], [], **ENVELOPE_OVER, label=ENVELOPE_LABEL)])
     return legend + [_flag_handles(ds, models, drawn + ["property"] * bounds)]
 
