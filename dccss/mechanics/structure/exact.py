@@ -111,6 +111,26 @@ def _bisect(u0, v0, p0, p1, omega, zeta, sign, lo, hi):
 
 
 @scalar.jit
+def reach(y0, v0, p0, p1, omega, zeta, sign, target, end):
+    """The first tau in [0, end] where sign * (y(tau) - target) reaches 0 (y monotone in the sign's
+    direction over (0, end]: a slide up to its stop), by bisection; -1 where it is not reached."""
+    if sign * (y0 - target) >= 0.0:
+        return 0.0
+    if sign * (slide(y0, v0, p0, p1, omega, zeta, end)[0] - target) < 0.0:
+        return -1.0
+    lo, hi = 0.0, end
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if sign * (slide(y0, v0, p0, p1, omega, zeta, mid)[0] - target) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+@scalar.jit
 def leaving(demand, slope, lower, upper, past_upper, past_lower):
     """The direction in which a rest under ``demand`` (m/s²), changing at ``slope`` (m/s³), ends at once:
     +1 where it reaches ``upper`` and grows on, or lies past it and ``past_upper`` (a demand past the bound
@@ -157,12 +177,20 @@ def slide_on(x, w, p0, p1, omega, zeta, sign, end, stops):
     return x, 0.0, when, True
 
 
-def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
-    """The exact one-component history at the interval ends into u, u̇, z and sticking (see the module
-    docstring; ``friction`` is μ g, m/s²): (DONE, n - 1), or (CHATTER, k) at an interval k of more than
-    MAX_PHASES stick/slip phases."""
+def line(time, a0, a1, omega, zeta, friction, ring, u, v, z, stick, held, impacts):
+    """The exact one-component history at the interval ends into u, u̇, z, sticking, the ring's force ``held``
+    (m/s², per unit mass, where the pad rests against a ring and the demand presses it on) and, per interval,
+    ``impacts`` (n, 3): the impacts on a ring in the interval ending at the sample, the largest speed at
+    impact (m/s) and the kinetic energy they take, Σ u̇²/2 (J/kg). ``friction`` is μ g (m/s²); ``ring`` the
+    stroke at which the pad meets a ring (m; inf: no ring). Returns (DONE, n - 1), or (CHATTER, k) at an
+    interval k of more than MAX_PHASES stick/slip phases.
+
+    A ring is a stop: the slide that reaches it ends in a perfectly plastic impact (u̇ drops to 0) and the
+    pad rests against it while the demand -a_g - ω² u presses it on or the friction holds it, whatever the
+    demand outwards (the ring carries it); it leaves where the demand pulls it back past the friction."""
     n = len(time)
     x, w = 0.0, 0.0  # u, u̇
+    at = 0.0  # the ring the pad rests against: +1, -1, or 0
     sliding, sign = friction == 0.0, 1.0
     demand = -a0[0]
     if not sliding and abs(demand) > friction:
@@ -178,14 +206,27 @@ def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
             phases += 1
             b0, b1 = a0[k] + a1[k] * tau, a1[k]  # the ground's acceleration from tau on
             if not sliding:
-                # sticking: the demand -a_g - ω² u is a straight line in t; it ends at ±μ g
-                when, direction = rest_end(-b0 - omega**2 * x, -b1, -friction, friction, h - tau)
+                # sticking: the demand -a_g - ω² u is a straight line in t; it ends at ±μ g (against a ring:
+                # only where it pulls back off it)
+                lower = -math.inf if at < 0.0 else -friction
+                upper = math.inf if at > 0.0 else friction
+                when, direction = rest_end(-b0 - omega**2 * x, -b1, lower, upper, h - tau)
                 tau += when
                 if direction != 0.0:
-                    sliding, sign = True, direction
+                    sliding, sign, at = True, direction, 0.0
                 continue
-            x, w, when, stopped = slide_on(x, w, -b0 - sign * friction, -b1, omega, zeta, sign, h - tau,
-                                           friction > 0.0)
+            p0 = -b0 - sign * friction
+            x0, w0 = x, w
+            x, w, when, stopped = slide_on(x, w, p0, -b1, omega, zeta, sign, h - tau, friction > 0.0)
+            if sign * x >= ring:  # the ring is reached first: an impact, the pad held against it
+                when = reach(x0, w0, p0, -b1, omega, zeta, sign, sign * ring, when)
+                speed = abs(slide(x0, w0, p0, -b1, omega, zeta, when)[1])
+                impacts[k + 1, 0] += 1.0
+                impacts[k + 1, 1] = max(impacts[k + 1, 1], speed)
+                impacts[k + 1, 2] += 0.5 * speed * speed
+                x, w, at, sliding = sign * ring, 0.0, sign, False
+                tau += when
+                continue
             if not stopped:
                 tau = h
                 continue
@@ -199,13 +240,18 @@ def line(time, a0, a1, omega, zeta, friction, u, v, z, stick):
                 sign = direction
         u[k + 1], v[k + 1] = x, w
         demand = -(a0[k] + a1[k] * h) - omega**2 * x
-        if not sliding and abs(demand) > friction:
+        if not sliding and (demand > friction and at <= 0.0 or demand < -friction and at >= 0.0):
             # past the friction at the sample, within rounding of it: sliding starts there
-            sliding, sign = True, math.copysign(1.0, demand)
+            sliding, sign, at = True, math.copysign(1.0, demand), 0.0
         if sliding:
             stick[k + 1], z[k + 1] = False, (sign if friction > 0 else 0.0)
+            continue
+        stick[k + 1] = True
+        pressed = at * demand - friction  # against a ring: what it carries beyond the friction
+        if at != 0.0 and pressed > 0.0:
+            held[k + 1], z[k + 1] = at * pressed, (at if friction > 0 else 0.0)
         else:
-            stick[k + 1], z[k + 1] = True, demand / friction
+            z[k + 1] = demand / friction if friction > 0 else 0.0
     return DONE, n - 1
 
 
@@ -214,7 +260,16 @@ def line_history(time, a0, a1, omega, zeta, friction, compiled=None):
     compiled for a long record (``backend``), interpreted for a short one."""
     n = time.size
     stick = np.zeros(n, dtype=bool)
-    return run_line(line, time, a0, a1, (omega, zeta, friction), (np.zeros(n), np.zeros(n), np.zeros(n), stick),
+    return run_line(line, time, a0, a1, (omega, zeta, friction, math.inf),
+                    (np.zeros(n), np.zeros(n), np.zeros(n), stick, np.zeros(n), np.zeros((n, 3))), compiled)[:4]
+
+
+def ring_history(time, a0, a1, omega, zeta, friction, ring, compiled=None):
+    """One-component history against a ring ``ring`` m off the centre, at the interval ends: u, u̇, z,
+    sticking, the ring's force (m/s², per unit mass) and the impacts per interval (n, 3) (``line``)."""
+    n = time.size
+    return run_line(line, time, a0, a1, (omega, zeta, friction, ring),
+                    (np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool), np.zeros(n), np.zeros((n, 3))),
                     compiled)
 
 

@@ -41,7 +41,7 @@ import math
 import numpy as np
 
 from .. import scalar
-from .exact import CHATTER, DONE, MAX_PHASES, first_stop, leaving, rest_end, run_line, slide, slide_on
+from .exact import CHATTER, DONE, MAX_PHASES, first_stop, leaving, reach, rest_end, run_line, slide, slide_on
 
 #: a phase of the device: both surfaces hold, surface 1 slides alone, surface 3 alone, both slide
 STUCK, SLIDE1, SLIDE3, BOTH = 0, 1, 2, 3
@@ -74,26 +74,6 @@ def _yielding(d, slope, past_upper, past_lower, u1, u3, w1sq, w3sq, m1, m3):
     if direction == 0.0:
         return STUCK, 0.0
     return _starting(direction, up1, up3, lo1, lo3, m1, m3), direction
-
-
-@scalar.jit
-def _reach(y0, v0, p0, p1, omega, zeta, sign, target, end):
-    """The first tau in [0, end] where sign * (y(tau) - target) reaches 0 (y monotone in the sign's
-    direction over (0, end]: a slide up to its stop), by bisection; -1 where it is not reached."""
-    if sign * (y0 - target) >= 0.0:
-        return 0.0
-    if sign * (slide(y0, v0, p0, p1, omega, zeta, end)[0] - target) < 0.0:
-        return -1.0
-    lo, hi = 0.0, end
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if mid <= lo or mid >= hi:
-            break
-        if sign * (slide(y0, v0, p0, p1, omega, zeta, mid)[0] - target) < 0.0:
-            lo = mid
-        else:
-            hi = mid
-    return hi
 
 
 def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, force):
@@ -149,7 +129,7 @@ def series_line(time, a0, a1, w1sq, w3sq, omega, zeta, m1, m3, u, v, u1, phase, 
             stop = first_stop(y, w, p0, p1, omega_j, zeta_j, sign, end)
             limit = stop if stop >= 0.0 else end
             target = (wi * other + (mi - mj) * sign) / wj  # where F reaches the other surface's threshold
-            when = _reach(y, w, p0, p1, omega_j, zeta_j, sign, target, limit)
+            when = reach(y, w, p0, p1, omega_j, zeta_j, sign, target, limit)
             stopped = False
             if when >= 0.0:
                 y, w = slide(y, w, p0, p1, omega_j, zeta_j, when)
