@@ -33,7 +33,7 @@ from ..friction import FACTOR, KIND, MU, RATIO, T0, WEIGHT, device_mu, surface_m
 from . import corner
 from .corner import (B0X, B0Y, B1X, B1Y, CONTRACTION, DAMPING, ERROR, GOES_ON, GRAVITY, KEPT, LAST, LENGTH1, LENGTH3,
                      MASS, MEMO, N0, N1, PARAMETERS, PREVIOUS, RHS, SPAN, TEMPERATURE1, TEMPERATURE3)
-from .circular import HEATED, breakaway
+from .circular import HEATED, breakaway, interval_drive, planar_ground
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
 from .heat import plate_temperature
 from .inputs import G
@@ -55,6 +55,13 @@ THETA = 0.1
 UNSPLIT = 3
 
 
+#: the articulated slider's state from phase to phase, a record of floats (``articulated``): u, u̇, u_1, the
+#: hinge's (δ, σ) while both surfaces slide, the phase, whether it starts from rest (1), the integrators' next
+#: steps (DOP853's, Radau's) and the time into the sample interval
+UX, UY, VX, VY, U1X, U1Y, DELTA, SIGMA, PHASE, STARTING, H_DOP, H_RADAU, TAU = range(13)
+STATE = 13
+
+
 @scalar.jit
 def _rest(fx, fy, p1x, p1y, p3x, p3y, r1, r3, hold):
     """The phase at rest under the force f per unit normal force that the friction must supply: STUCK
@@ -65,26 +72,33 @@ def _rest(fx, fy, p1x, p1y, p3x, p3y, r1, r3, hold):
     d3 = math.sqrt((fx - p3x) ** 2 + (fy - p3y) ** 2)
     if d1 <= r1 * hold and d3 <= r3 * hold:
         return STUCK
-    on1, on3 = False, False  # the projection onto circle j lies within the other circle
-    if d1 > r1 * hold:
-        qx, qy = p1x + r1 * (fx - p1x) / d1, p1y + r1 * (fy - p1y) / d1
-        e3 = math.sqrt((qx - p3x) ** 2 + (qy - p3y) ** 2) - r3
-        if e3 <= r3 * (hold - 1.0):
-            if e3 >= -TOGETHER * r3:
-                return BOTH
-            on1 = True
-    if d3 > r3 * hold:
-        qx, qy = p3x + r3 * (fx - p3x) / d3, p3y + r3 * (fy - p3y) / d3
-        e1 = math.sqrt((qx - p1x) ** 2 + (qy - p1y) ** 2) - r1
-        if e1 <= r1 * (hold - 1.0):
-            if e1 >= -TOGETHER * r1:
-                return BOTH
-            on3 = True
-    if on1 and not on3:
+    on1 = _projected(fx, fy, p1x, p1y, r1, d1, p3x, p3y, r3, hold) if d1 > r1 * hold else OUTSIDE
+    if on1 == EDGE:
+        return BOTH
+    on3 = _projected(fx, fy, p3x, p3y, r3, d3, p1x, p1y, r1, hold) if d3 > r3 * hold else OUTSIDE
+    if on3 == EDGE:
+        return BOTH
+    if on1 == INSIDE and on3 != INSIDE:
         return SLIDE1
-    if on3 and not on1:
+    if on3 == INSIDE and on1 != INSIDE:
         return SLIDE3
     return BOTH
+
+
+#: where f's projection onto one friction circle lies (``_projected``): outside the other circle, within it, or on
+#: its edge (within TOGETHER)
+OUTSIDE, INSIDE, EDGE = 0, 1, 2
+
+
+@scalar.jit
+def _projected(fx, fy, px, py, r, d, ox, oy, ro, hold):
+    """Where the projection of f (at the distance d > r hold from p) onto the circle |f - p| = r lies against the
+    other circle |f - o| = ro hold: OUTSIDE, INSIDE or on its EDGE (within TOGETHER ro)."""
+    qx, qy = px + r * (fx - px) / d, py + r * (fy - py) / d
+    e = math.sqrt((qx - ox) ** 2 + (qy - oy) ** 2) - ro
+    if e <= ro * (hold - 1.0):
+        return EDGE if e >= -TOGETHER * ro else INSIDE
+    return OUTSIDE
 
 
 @scalar.jit
@@ -123,234 +137,285 @@ def _corner(wx, wy, ex, ey, m1, m3, L1, L3):
     return (SLIDE1 if best_sigma > 1.0 else SLIDE3), best_delta, best_sigma
 
 
-def articulated(time, a0, a1, n0, n1, rows, rigid_rows, alike, samples, L1, L3, g, damp, rtol, atol, A, B, C, E3,
-                E5, K, y4, out, trial, work, Z, y6, ys, k6, u, v, u1, v1, phase, force, mu, heat, temperature):
-    """The articulated slider's history at the interval ends (the module docstring) into u, u̇, u_1 (n, 2),
-    the phase (n), F/W (n, 2), each surface's coefficient μ_j (n, 2; λ included, at its sliding speed)
-    and temperature (n, 2); ``rows`` the surfaces' laws (weight and ratio R^j / L_j), ``rigid_rows`` the
-    same laws as the rigid slider's (R^j / L: both surfaces starting together, and sliding together
-    throughout where ``alike``: ``surfaces_alike``), N/W on interval k n0[k] + n1[k] (t - t_k): (DONE, 0), or
-    (CHATTER, FAILED or UNSPLIT, the interval)."""
+def articulated(time, a0, a1, n0, n1, samples, rows, rigid_rows, alike, p, dop, radau, history):
+    """The articulated slider's history at the interval ends (the module docstring); ``rows`` the surfaces'
+    laws (weight and ratio R^j / L_j), ``rigid_rows`` the same laws as the rigid slider's (R^j / L: both
+    surfaces starting together, and sliding together throughout where ``alike``: ``surfaces_alike``), N/W on
+    interval k n0[k] + n1[k] (t - t_k); ``p`` a phase's parameters (``corner``) with the device's set (L_1,
+    L_3, g, 2ζω); ``dop`` DOP853's (rtol, atol, A, B, C, E3, E5, K, out, trial, y) (``integrate``), ``radau``
+    Radau's (work, Z, y, y0, k0) (``_both``); ``history`` (u, u̇, u_1, u̇_1, the phase, F/W, each surface's
+    coefficient μ_j (λ included, at its sliding speed), the heat intervals, each surface's temperature), written
+    at the interval ends: (DONE, 0), or (CHATTER, FAILED or UNSPLIT, the interval)."""
+    u, v, u1, v1, phase, force, mu, heat, temperature = history
     n = time.size
-    L = L1 + L3
-    hold = 1.0 + rtol
+    g, hold = p[GRAVITY], 1.0 + dop[0]
     heats = rows[0][KIND] == HEATED or rows[1][KIND] == HEATED
     t1, t3 = rows[0][T0], rows[1][T0]
     temperature[0, 0], temperature[0, 1] = t1, t3
-    x0, x1, w0, w1, q0, q1 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # u, u̇, u_1
-    delta, sigma = 0.0, 0.0
-    state, starting = STUCK, False
-    h_next, h_radau = 0.0, 0.0
+    s = np.zeros(STATE)
     heated, since = 0, 0
-    p = np.zeros(PARAMETERS)
-    p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING] = L1, L3, g, damp
     m = max(n0[0], 0.0)
     if m > 0.0:
-        state = _rest(-a0[0, 0] / (g * m), -a0[0, 1] / (g * m), 0.0, 0.0, 0.0, 0.0,
-                      device_mu(rows[0:1], 0.0, m, t1, t1), device_mu(rows[1:2], 0.0, m, t3, t3), hold)
-        starting = state != STUCK
-    _record(0, state, x0, x1, w0, w1, q0, q1, delta, sigma, -a0[0, 0], -a0[0, 1], m, p, rows, t1, t3, g, ys, u, v,
-            u1, v1, phase, force, mu)
+        s[PHASE] = _rest(-a0[0, 0] / (g * m), -a0[0, 1] / (g * m), 0.0, 0.0, 0.0, 0.0,
+                         device_mu(rows[0:1], 0.0, m, t1, t1), device_mu(rows[1:2], 0.0, m, t3, t3), hold)
+        s[STARTING] = 1.0 if s[PHASE] != STUCK else 0.0
+    _record(0, s, -a0[0, 0], -a0[0, 1], m, p, rows, t1, t3, radau[3], history)
     for k in range(n - 1):
         h = time[k + 1] - time[k]
-        tau, phases = 0.0, 0
+        s[TAU], phases = 0.0, 0
         p[TEMPERATURE1], p[TEMPERATURE3] = t1, t3
-        while tau < h:
+        while s[TAU] < h:
             phases += 1
             if phases > MAX_PHASES:
                 return CHATTER, k
-            b00, b01 = a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau
-            b10, b11 = a1[k, 0], a1[k, 1]
-            m0, m1 = n0[k] + n1[k] * tau, n1[k]
-            end = h - tau
-            if state == STUCK:
-                r1 = g * device_mu(rows[0:1], 0.0, max(m0, 0.0), t1, t1) * hold
-                r3 = g * device_mu(rows[1:2], 0.0, max(m0, 0.0), t3, t3) * hold
-                g1, g3 = g / L1, g / L3
-                y1x, y1y, y3x, y3y = q0, q1, x0 - q0, x1 - q1
-                when1 = breakaway(-b00 - g1 * m0 * y1x, -b01 - g1 * m0 * y1y, -b10 - g1 * m1 * y1x,
-                                  -b11 - g1 * m1 * y1y, r1, m0, m1, end)
-                when3 = breakaway(-b00 - g3 * m0 * y3x, -b01 - g3 * m0 * y3y, -b10 - g3 * m1 * y3x,
-                                  -b11 - g3 * m1 * y3y, r3, m0, m1, end)
-                if when1 < 0.0 and when3 < 0.0:
-                    tau = h
-                    continue
-                first = SLIDE1 if when3 < 0.0 or (0.0 <= when1 <= when3) else SLIDE3
-                when = when1 if first == SLIDE1 else when3
-                tau += when
-                mm = max(m0 + m1 * when, 0.0)
-                state, starting, h_next = first, True, 0.0
-                if mm <= 0.0:  # lifted off: the upper half goes with the superstructure
-                    state = SLIDE3
-                    continue
-                # the other surface within TOGETHER of its friction: both start together
-                fx, fy = -(b00 + b10 * when) / (g * mm), -(b01 + b11 * when) / (g * mm)
-                ox, oy, Lo, ro = (y3x, y3y, L3, r3) if first == SLIDE1 else (y1x, y1y, L1, r1)
-                radius = ro / (g * hold)
-                if math.sqrt((fx - ox / Lo) ** 2 + (fy - oy / Lo) ** 2) >= radius * (1.0 - TOGETHER):
-                    state = BOTH
-                continue
-            if state == SLIDE1 or state == SLIDE3:
-                lower = state == SLIDE1
-                Lj = L1 if lower else L3
-                Li = L3 if lower else L1
-                ix, iy = (x0 - q0, x1 - q1) if lower else (q0, q1)  # the holding surface's displacement
-                y4[0], y4[1] = x0 - ix, x1 - iy
-                y4[2], y4[3] = w0, w1
-                tj, ti = (t1, t3) if lower else (t3, t1)
-                law = rows[0:1] if lower else rows[1:2]
-                other = rows[1:2] if lower else rows[0:1]
-                mm = max(m0, 0.0)
-                if starting and mm > 0.0:  # from rest: short of its friction by more than the state's accuracy, at rest
-                    fx, fy = -b00 / (g * mm) - (x0 - ix) / Lj, -b01 / (g * mm) - (x1 - iy) / Lj
-                    if math.sqrt(fx * fx + fy * fy) < device_mu(law, 0.0, mm, tj, tj) * (1.0 - RADAU_RTOL):
-                        w0, w1, state, starting = 0.0, 0.0, STUCK, False
-                        continue
-                load = (b00, b01, b10, b11, g / Lj, damp, g, m0, m1, tj, tj, ix / Li, iy / Li, ti)
-                ended, when, h_next = integrate(y4, end, h_next if not starting else 0.0, load, law,
-                                                CAPPED if starting else 0,
-                                                not starting, rtol, atol, A, B, C, E3, E5, K, out, trial, other)
-                if ended == TOO_SHORT:
-                    return FAILED, k
-                x0, x1, w0, w1 = y4[0] + ix, y4[1] + iy, y4[2], y4[3]
-                if lower:
-                    q0, q1 = y4[0], y4[1]
-                tau += when
-                if ended == NONE:
-                    tau = h
-                    continue
-                mm = max(m0 + m1 * when, 0.0)
-                if ended == HELD:
-                    w0, w1, state, starting, h_next = 0.0, 0.0, STUCK, False, 0.0
-                    continue
-                if ended == MOVING:
-                    starting, h_next = False, 0.0
-                    continue
-                if ended == STOP:  # at rest (the last REST_SPEED's travel, under 1e-17 m, left out)
-                    w0, w1 = 0.0, 0.0
-                    state = _at_rest(b00 + b10 * when, b01 + b11 * when, mm, x0, x1, q0, q1, L1, L3, g, rows, t1,
-                                     t3, hold)
-                    starting, h_next = state != STUCK, 0.0
-                    continue
-                # YIELD: both slide
-                if starting:  # still starting from rest: both start together
-                    state, h_next = BOTH, 0.0
-                    continue
-                speed = math.sqrt(w0 * w0 + w1 * w1)
-                ex, ey = w0 / speed, w1 / speed
-                mj = law_coefficient(when, y4, load, law)
-                fx, fy = y4[0] / Lj + mj * ex, y4[1] / Lj + mj * ey
-                zix, ziy = fx - ix / Li, fy - iy / Li
-                size = math.sqrt(zix * zix + ziy * ziy)
-                zix, ziy = zix / size, ziy / size
-                z1x, z1y, z3x, z3y = (ex, ey, zix, ziy) if lower else (zix, ziy, ex, ey)
-                delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
-                y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, 1.0 if lower else 0.0
-                p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
-                held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
-                if held == (1 if lower else -1):  # the surface that yields would slide backwards
-                    return UNSPLIT, k
-                sigma = y6[5]
-                # both slide, or the one that was sliding holds (its friction outgrows the force: a law of N/W)
-                state = BOTH if held == 0 else (SLIDE3 if lower else SLIDE1)
-                starting, h_radau, h_next = False, 0.0, 0.0 if held != 0 else h_next
-                continue
-            # both slide
-            if starting or alike:
-                # from rest together, or alike throughout: the rigid slider of the proportional split (from rest
-                # until |u̇| reaches START_SPEED)
-                y4[0], y4[1], y4[2], y4[3] = x0, x1, w0, w1
-                if starting:
-                    # from rest: where the force is short of the pair's friction by more than the state's accuracy
-                    # (a stop's state after Radau: RADAU_RTOL), at rest; a rounding short, the start holds
-                    # until it is not (CAPPED)
-                    mm = max(m0, 0.0)
-                    if mm > 0.0:
-                        fx, fy = -b00 / (g * mm) - x0 / L, -b01 / (g * mm) - x1 / L
-                        if math.sqrt(fx * fx + fy * fy) < device_mu(rigid_rows, 0.0, mm, t1, t3) * (1.0 - RADAU_RTOL):
-                            state, starting = STUCK, False
-                            continue
-                load = (b00, b01, b10, b11, g / L, damp, g, m0, m1, t1, t3, 0.0, 0.0, 0.0)
-                ended, when, h_next = integrate(y4, end, 0.0 if starting else h_next, load, rigid_rows,
-                                                CAPPED if starting else 0,
-                                                not starting, rtol, atol, A, B, C, E3, E5, K, out, trial,
-                                                rigid_rows[:0])
-                if ended == TOO_SHORT:
-                    return FAILED, k
-                dx, dy = y4[0] - x0, y4[1] - x1
-                q0, q1 = q0 + L1 / L * dx, q1 + L1 / L * dy
-                x0, x1, w0, w1 = y4[0], y4[1], y4[2], y4[3]
-                delta, sigma = 0.0, L1 / L
-                tau += when
-                if ended == NONE:
-                    tau = h
-                    continue
-                if ended == HELD:
-                    w0, w1, state, starting = 0.0, 0.0, STUCK, False
-                    continue
-                if ended == STOP:
-                    w0, w1 = 0.0, 0.0
-                    state = _at_rest(b00 + b10 * when, b01 + b11 * when, max(m0 + m1 * when, 0.0), x0, x1, q0, q1,
-                                     L1, L3, g, rows, t1, t3, hold)
-                    starting, h_next = state != STUCK, 0.0
-                    continue
-                if alike:
-                    starting = False
-                    continue
-                # moving: both surfaces' corner, or one surface only
-                speed = math.sqrt(w0 * w0 + w1 * w1)
-                mm = max(m0 + m1 * when, 0.0)
-                c1m = device_mu(rows[0:1], 0.0, mm, t1, t1)
-                c3m = device_mu(rows[1:2], 0.0, mm, t3, t3)
-                state, delta, sigma = _corner(q0 / L1 - (x0 - q0) / L3, q1 / L1 - (x1 - q1) / L3, w0 / speed,
-                                              w1 / speed, c1m, c3m, L1, L3)
-                if state == BOTH:
-                    y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
-                    p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = (b00 + b10 * when, b01 + b11 * when, b10, b11, mm,
-                                                                    m1)
-                    held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
-                    sigma = y6[5]
-                    if held != 0:  # no split balances the hinge: the surface that would slide backwards holds
-                        state = SLIDE3 if held < 0 else SLIDE1
-                starting, h_radau, h_next = False, 0.0, 0.0
-                continue
-            y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
-            p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00, b01, b10, b11, m0, m1
-            ended, when, h_radau = _both(y6, ys, end, h_radau, p, rows, k6, work, Z)
-            if ended == TOO_SHORT:
-                return FAILED, k
-            x0, x1, w0, w1, delta, sigma = y6[0], y6[1], y6[2], y6[3], y6[4], y6[5]
-            _, z1x, z1y, _, _, _, _, mu1, _, fx, fy = corner.shape(y6, p, rows, when)
-            q0, q1 = L1 * (fx - mu1 * z1x), L1 * (fy - mu1 * z1y)
-            tau += when
-            if ended == NONE:
-                tau = h
-                continue
-            mm = max(m0 + m1 * when, 0.0)
-            if ended == STOP:
-                w0, w1 = 0.0, 0.0
-                state = _at_rest(b00 + b10 * when, b01 + b11 * when, mm, x0, x1, q0, q1, L1, L3, g, rows, t1, t3, hold)
-                starting, h_next = state != STUCK, 0.0
-                continue
-            # one surface stopped: σ = 1 (surface 3 holds) or 0 (surface 1 holds)
-            state = SLIDE1 if sigma >= 1.0 else SLIDE3
-            starting, h_next = False, 0.0
+            drive = interval_drive(a0, a1, n0, n1, k, s[TAU])
+            if s[PHASE] == STUCK:
+                status = _from_rest(s, drive, h, p, rows, hold)
+            elif s[PHASE] != BOTH:
+                status = _alone(s, drive, h, p, rows, hold, dop, radau)
+            elif s[STARTING] != 0.0 or alike:
+                status = _together(s, drive, h, p, rows, rigid_rows, alike, hold, dop, radau)
+            else:
+                status = _sliding_both(s, drive, h, p, rows, hold, radau)
+            if status != DONE:
+                return status, k
         m = max(n0[k] + n1[k] * h, 0.0)
         if heats:
             temperature[k + 1, 0], temperature[k + 1, 1] = t1, t3
             if samples[k + 1] or k + 2 == n:  # the end of a heat interval
                 normal = max(0.5 * (n0[since] + m), 0.0)
                 if rows[0][KIND] == HEATED:
-                    t1 = plate_temperature(heated, time[since], time[k + 1], u1[since, 0], u1[since, 1], q0, q1,
-                                           normal, rows[0], 0, heat, temperature, k + 1)
+                    t1 = plate_temperature(heated, time[since], time[k + 1], u1[since, 0], u1[since, 1], s[U1X],
+                                           s[U1Y], normal, rows[0], 0, heat, temperature, k + 1)
                 if rows[1][KIND] == HEATED:
                     t3 = plate_temperature(heated, time[since], time[k + 1], u[since, 0] - u1[since, 0],
-                                           u[since, 1] - u1[since, 1], x0 - q0, x1 - q1, normal, rows[1], 1, heat,
-                                           temperature, k + 1)
+                                           u[since, 1] - u1[since, 1], s[UX] - s[U1X], s[UY] - s[U1Y], normal, rows[1],
+                                           1, heat, temperature, k + 1)
                 heated, since = heated + 1, k + 1
-        _record(k + 1, state, x0, x1, w0, w1, q0, q1, delta, sigma, -(a0[k, 0] + a1[k, 0] * h),
-                -(a0[k, 1] + a1[k, 1] * h), m, p, rows, t1, t3, g, ys, u, v, u1, v1, phase, force, mu)
+        _record(k + 1, s, -(a0[k, 0] + a1[k, 0] * h), -(a0[k, 1] + a1[k, 1] * h), m, p, rows, t1, t3, radau[3],
+                history)
     return DONE, 0
+
+
+@scalar.jit
+def _from_rest(s, drive, h, p, rows, hold):
+    """At rest: where the force leaves a surface's circle first in the interval's rest (``breakaway``), that
+    surface starts from rest; the other within TOGETHER of its own friction then, both; lifted off, the upper
+    half goes with the superstructure (surface 3 slides). ``drive`` the ground's acceleration b0 + b1 τ and N/W
+    n0 + n1 τ from the phase's start (``interval_drive``), h the interval's length: DONE."""
+    b00, b01, b10, b11, m0, m1 = drive
+    end = h - s[TAU]
+    L1, L3, g, t1, t3 = p[LENGTH1], p[LENGTH3], p[GRAVITY], p[TEMPERATURE1], p[TEMPERATURE3]
+    r1 = g * device_mu(rows[0:1], 0.0, max(m0, 0.0), t1, t1) * hold
+    r3 = g * device_mu(rows[1:2], 0.0, max(m0, 0.0), t3, t3) * hold
+    g1, g3 = g / L1, g / L3
+    y1x, y1y, y3x, y3y = s[U1X], s[U1Y], s[UX] - s[U1X], s[UY] - s[U1Y]
+    when1 = breakaway(-b00 - g1 * m0 * y1x, -b01 - g1 * m0 * y1y, -b10 - g1 * m1 * y1x, -b11 - g1 * m1 * y1y, r1, m0,
+                      m1, end)
+    when3 = breakaway(-b00 - g3 * m0 * y3x, -b01 - g3 * m0 * y3y, -b10 - g3 * m1 * y3x, -b11 - g3 * m1 * y3y, r3, m0,
+                      m1, end)
+    if when1 < 0.0 and when3 < 0.0:
+        s[TAU] = h
+        return DONE
+    first = SLIDE1 if when3 < 0.0 or (0.0 <= when1 <= when3) else SLIDE3
+    when = when1 if first == SLIDE1 else when3
+    s[TAU] += when
+    mm = max(m0 + m1 * when, 0.0)
+    s[PHASE], s[STARTING], s[H_DOP] = first, 1.0, 0.0
+    if mm <= 0.0:  # lifted off: the upper half goes with the superstructure
+        s[PHASE] = SLIDE3
+        return DONE
+    # the other surface within TOGETHER of its friction: both start together
+    fx, fy = -(b00 + b10 * when) / (g * mm), -(b01 + b11 * when) / (g * mm)
+    ox, oy, Lo, ro = (y3x, y3y, L3, r3) if first == SLIDE1 else (y1x, y1y, L1, r1)
+    radius = ro / (g * hold)
+    if math.sqrt((fx - ox / Lo) ** 2 + (fy - oy / Lo) ** 2) >= radius * (1.0 - TOGETHER):
+        s[PHASE] = BOTH
+    return DONE
+
+
+@scalar.jit
+def _alone(s, drive, h, p, rows, hold, dop, radau):
+    """One surface slides (SLIDE1 or SLIDE3), the other holds: the rigid slider's interaction (``integrate``)
+    with the pendulum L_j and surface j's law, the stroke's origin at the holding surface's displacement, until
+    a stop, the end of a start from rest, or the force reaching the other surface's circle (YIELD: both slide,
+    the hinge's δ from the two friction directions, σ made consistent; or the one that was sliding holds):
+    DONE, FAILED (the step too short) or UNSPLIT (no split of the sliding balances the hinge)."""
+    rtol, atol, A, B, C, E3, E5, K, out, trial, y4 = dop
+    work, y6 = radau[0], radau[2]
+    b00, b01, b10, b11, m0, m1 = drive
+    end = h - s[TAU]
+    L1, L3, g, damp = p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING]
+    x0, x1, w0, w1, q0, q1 = s[UX], s[UY], s[VX], s[VY], s[U1X], s[U1Y]
+    starting = s[STARTING] != 0.0
+    lower = s[PHASE] == SLIDE1
+    Lj = L1 if lower else L3
+    Li = L3 if lower else L1
+    ix, iy = (x0 - q0, x1 - q1) if lower else (q0, q1)  # the holding surface's displacement
+    y4[0], y4[1] = x0 - ix, x1 - iy
+    y4[2], y4[3] = w0, w1
+    tj, ti = (p[TEMPERATURE1], p[TEMPERATURE3]) if lower else (p[TEMPERATURE3], p[TEMPERATURE1])
+    law = rows[0:1] if lower else rows[1:2]
+    other = rows[1:2] if lower else rows[0:1]
+    mm = max(m0, 0.0)
+    if starting and mm > 0.0:  # from rest: short of its friction by more than the state's accuracy, at rest
+        fx, fy = -b00 / (g * mm) - (x0 - ix) / Lj, -b01 / (g * mm) - (x1 - iy) / Lj
+        if math.sqrt(fx * fx + fy * fy) < device_mu(law, 0.0, mm, tj, tj) * (1.0 - RADAU_RTOL):
+            s[VX], s[VY], s[PHASE], s[STARTING] = 0.0, 0.0, STUCK, 0.0
+            return DONE
+    load = (b00, b01, b10, b11, g / Lj, damp, g, m0, m1, tj, tj, ix / Li, iy / Li, ti)
+    ended, when, s[H_DOP] = integrate(y4, end, s[H_DOP] if not starting else 0.0, load, law, CAPPED if starting else 0,
+                                      not starting, rtol, atol, A, B, C, E3, E5, K, out, trial, other)
+    if ended == TOO_SHORT:
+        return FAILED
+    x0, x1, w0, w1 = y4[0] + ix, y4[1] + iy, y4[2], y4[3]
+    s[UX], s[UY], s[VX], s[VY] = x0, x1, w0, w1
+    if lower:
+        s[U1X], s[U1Y] = y4[0], y4[1]
+    s[TAU] += when
+    if ended == NONE:
+        s[TAU] = h
+        return DONE
+    mm = max(m0 + m1 * when, 0.0)
+    if ended == HELD:
+        s[VX], s[VY], s[PHASE], s[STARTING], s[H_DOP] = 0.0, 0.0, STUCK, 0.0, 0.0
+        return DONE
+    if ended == MOVING:
+        s[STARTING], s[H_DOP] = 0.0, 0.0
+        return DONE
+    if ended == STOP:  # at rest (the last REST_SPEED's travel, under 1e-17 m, left out)
+        _stopped(s, b00 + b10 * when, b01 + b11 * when, mm, p, rows, hold)
+        return DONE
+    # YIELD: both slide
+    if starting:  # still starting from rest: both start together
+        s[PHASE], s[H_DOP] = BOTH, 0.0
+        return DONE
+    speed = math.sqrt(w0 * w0 + w1 * w1)
+    ex, ey = w0 / speed, w1 / speed
+    mj = law_coefficient(when, y4, load, law)
+    fx, fy = y4[0] / Lj + mj * ex, y4[1] / Lj + mj * ey
+    zix, ziy = fx - ix / Li, fy - iy / Li
+    size = math.sqrt(zix * zix + ziy * ziy)
+    zix, ziy = zix / size, ziy / size
+    z1x, z1y, z3x, z3y = (ex, ey, zix, ziy) if lower else (zix, ziy, ex, ey)
+    delta = math.atan2(z3x * z1y - z3y * z1x, z3x * z1x + z3y * z1y)
+    y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = s[UX], s[UY], w0, w1, delta, 1.0 if lower else 0.0
+    p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
+    held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
+    if held == (1 if lower else -1):  # the surface that yields would slide backwards
+        return UNSPLIT
+    s[DELTA], s[SIGMA] = delta, y6[5]
+    # both slide, or the one that was sliding holds (its friction outgrows the force: a law of N/W)
+    s[PHASE] = BOTH if held == 0 else (SLIDE3 if lower else SLIDE1)
+    s[STARTING], s[H_RADAU] = 0.0, 0.0
+    if held != 0:
+        s[H_DOP] = 0.0
+    return DONE
+
+
+@scalar.jit
+def _together(s, drive, h, p, rows, rigid_rows, alike, hold, dop, radau):
+    """Both surfaces slide as the rigid slider of their proportional split: from rest together until |u̇|
+    reaches START_SPEED, or throughout where ``alike``; then (not alike) both surfaces' corner (``_corner``,
+    σ made consistent) or one surface alone: DONE or FAILED (the step too short)."""
+    rtol, atol, A, B, C, E3, E5, K, out, trial, y4 = dop
+    work, y6 = radau[0], radau[2]
+    b00, b01, b10, b11, m0, m1 = drive
+    end = h - s[TAU]
+    L1, L3, g, damp = p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING]
+    t1, t3 = p[TEMPERATURE1], p[TEMPERATURE3]
+    L = L1 + L3
+    x0, x1, w0, w1, q0, q1 = s[UX], s[UY], s[VX], s[VY], s[U1X], s[U1Y]
+    starting = s[STARTING] != 0.0
+    y4[0], y4[1], y4[2], y4[3] = x0, x1, w0, w1
+    if starting:
+        # from rest: where the force is short of the pair's friction by more than the state's accuracy (a stop's
+        # state after Radau: RADAU_RTOL), at rest; a rounding short, the start holds until it is not (CAPPED)
+        mm = max(m0, 0.0)
+        if mm > 0.0:
+            fx, fy = -b00 / (g * mm) - x0 / L, -b01 / (g * mm) - x1 / L
+            if math.sqrt(fx * fx + fy * fy) < device_mu(rigid_rows, 0.0, mm, t1, t3) * (1.0 - RADAU_RTOL):
+                s[PHASE], s[STARTING] = STUCK, 0.0
+                return DONE
+    load = (b00, b01, b10, b11, g / L, damp, g, m0, m1, t1, t3, 0.0, 0.0, 0.0)
+    ended, when, s[H_DOP] = integrate(y4, end, 0.0 if starting else s[H_DOP], load, rigid_rows,
+                                      CAPPED if starting else 0, not starting, rtol, atol, A, B, C, E3, E5, K, out,
+                                      trial, rigid_rows[:0])
+    if ended == TOO_SHORT:
+        return FAILED
+    dx, dy = y4[0] - x0, y4[1] - x1
+    q0, q1 = q0 + L1 / L * dx, q1 + L1 / L * dy
+    x0, x1, w0, w1 = y4[0], y4[1], y4[2], y4[3]
+    s[UX], s[UY], s[VX], s[VY], s[U1X], s[U1Y] = x0, x1, w0, w1, q0, q1
+    s[DELTA], s[SIGMA] = 0.0, L1 / L
+    s[TAU] += when
+    if ended == NONE:
+        s[TAU] = h
+        return DONE
+    if ended == HELD:
+        s[VX], s[VY], s[PHASE], s[STARTING] = 0.0, 0.0, STUCK, 0.0
+        return DONE
+    if ended == STOP:
+        _stopped(s, b00 + b10 * when, b01 + b11 * when, max(m0 + m1 * when, 0.0), p, rows, hold)
+        return DONE
+    if alike:
+        s[STARTING] = 0.0
+        return DONE
+    # moving: both surfaces' corner, or one surface only
+    speed = math.sqrt(w0 * w0 + w1 * w1)
+    mm = max(m0 + m1 * when, 0.0)
+    c1m = device_mu(rows[0:1], 0.0, mm, t1, t1)
+    c3m = device_mu(rows[1:2], 0.0, mm, t3, t3)
+    state, delta, sigma = _corner(q0 / L1 - (x0 - q0) / L3, q1 / L1 - (x1 - q1) / L3, w0 / speed, w1 / speed, c1m,
+                                  c3m, L1, L3)
+    if state == BOTH:
+        y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = x0, x1, w0, w1, delta, sigma
+        p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00 + b10 * when, b01 + b11 * when, b10, b11, mm, m1
+        held = corner.consistent(y6, p, rows, 0.0, work[RHS], work[MASS])
+        sigma = y6[5]
+        if held != 0:  # no split balances the hinge: the surface that would slide backwards holds
+            state = SLIDE3 if held < 0 else SLIDE1
+    s[PHASE], s[DELTA], s[SIGMA] = state, delta, sigma
+    s[STARTING], s[H_RADAU], s[H_DOP] = 0.0, 0.0, 0.0
+    return DONE
+
+
+@scalar.jit
+def _sliding_both(s, drive, h, p, rows, hold, radau):
+    """Both surfaces slide: Radau on the corner equations (``_both``), until a stop or one surface stopping (σ
+    reaches 1: surface 3 holds, or 0: surface 1 holds): DONE or FAILED (the step too short)."""
+    work, Z, y6, ys, k6 = radau
+    b00, b01, b10, b11, m0, m1 = drive
+    y6[0], y6[1], y6[2], y6[3], y6[4], y6[5] = s[UX], s[UY], s[VX], s[VY], s[DELTA], s[SIGMA]
+    p[B0X], p[B0Y], p[B1X], p[B1Y], p[N0], p[N1] = b00, b01, b10, b11, m0, m1
+    ended, when, s[H_RADAU] = _both(y6, ys, h - s[TAU], s[H_RADAU], p, rows, k6, work, Z)
+    if ended == TOO_SHORT:
+        return FAILED
+    s[UX], s[UY], s[VX], s[VY], s[DELTA], s[SIGMA] = y6[0], y6[1], y6[2], y6[3], y6[4], y6[5]
+    _, z1x, z1y, _, _, _, _, mu1, _, fx, fy = corner.shape(y6, p, rows, when)
+    L1 = p[LENGTH1]
+    s[U1X], s[U1Y] = L1 * (fx - mu1 * z1x), L1 * (fy - mu1 * z1y)
+    s[TAU] += when
+    if ended == NONE:
+        s[TAU] = h
+        return DONE
+    if ended == STOP:
+        _stopped(s, b00 + b10 * when, b01 + b11 * when, max(m0 + m1 * when, 0.0), p, rows, hold)
+        return DONE
+    # one surface stopped: σ = 1 (surface 3 holds) or 0 (surface 1 holds)
+    s[PHASE] = SLIDE1 if s[SIGMA] >= 1.0 else SLIDE3
+    s[STARTING], s[H_DOP] = 0.0, 0.0
+    return DONE
+
+
+@scalar.jit
+def _stopped(s, bx, by, mm, p, rows, hold):
+    """u̇ = 0: the phase at rest (``_at_rest``) under the ground's acceleration b and N/W mm, a start from rest
+    where it is not STUCK."""
+    s[VX], s[VY] = 0.0, 0.0
+    s[PHASE] = _at_rest(bx, by, mm, s[UX], s[UY], s[U1X], s[U1Y], p[LENGTH1], p[LENGTH3], p[GRAVITY], rows,
+                        p[TEMPERATURE1], p[TEMPERATURE3], hold)
+    s[STARTING], s[H_DOP] = 1.0 if s[PHASE] != STUCK else 0.0, 0.0
 
 
 @scalar.jit
@@ -629,21 +694,24 @@ def _slowest(y0, Z):
 
 
 @scalar.jit
-def _record(k, state, x0, x1, w0, w1, q0, q1, delta, sigma, dx, dy, m, p, rows, t1, t3, g, y, u, v, u1, v1, phase,
-            force, mu):
-    """Row k of the history: the state, u̇_1, F/W (the demand -a_g / g at rest) and each surface's μ_j."""
+def _record(k, s, dx, dy, m, p, rows, t1, t3, y, history):
+    """Row k of the history (``articulated``) from the state record s: the state, u̇_1, F/W (the demand -a_g / g at
+    rest) and each surface's μ_j."""
+    u, v, u1, v1, phase, force, mu, _, _ = history
+    x0, x1, w0, w1, q0, q1 = s[UX], s[UY], s[VX], s[VY], s[U1X], s[U1Y]
+    state = int(s[PHASE])
     u[k, 0], u[k, 1], v[k, 0], v[k, 1], u1[k, 0], u1[k, 1] = x0, x1, w0, w1, q0, q1
     phase[k] = state
     v1[k, 0], v1[k, 1] = (w0, w1) if state == SLIDE1 else (0.0, 0.0)
     speed = math.sqrt(w0 * w0 + w1 * w1)
-    L1, L3 = p[LENGTH1], p[LENGTH3]
+    L1, L3, g = p[LENGTH1], p[LENGTH3], p[GRAVITY]
     if state == STUCK:
         force[k, 0], force[k, 1] = dx / g, dy / g
         mu[k, 0] = rows[0][FACTOR] * surface_mu(rows[0], 0.0, m, t1)
         mu[k, 1] = rows[1][FACTOR] * surface_mu(rows[1], 0.0, m, t3)
         return
     if state == BOTH and speed > 0.0:
-        y[0], y[1], y[2], y[3], y[4], y[5] = x0, x1, w0, w1, delta, sigma
+        y[0], y[1], y[2], y[3], y[4], y[5] = x0, x1, w0, w1, s[DELTA], s[SIGMA]
         p[N0], p[N1] = m, 0.0
         n, z1x, z1y, z3x, z3y, s1, s3, m1, m3, fx, fy = corner.shape(y, p, rows, 0.0)
         force[k, 0], force[k, 1] = m * fx, m * fy
@@ -675,38 +743,29 @@ def articulated_history(ground, L1, L3, zeta, rows, rigid_rows, samples=None, co
     each interval end is one of the record's samples (the heat intervals; default: all); ``compiled`` None:
     compiled for a long record (``backend``), interpreted for a short one."""
     from .. import backend
-    from .integrator import ATOL, RTOL, SIZE, STAGES, tableau
+    from .integrator import ATOL, RTOL, scratch, tableau
 
-    time, a0, a1 = ground.time, ground.a0, ground.a1
-    if a0.shape[1] == 1:
-        a0, a1 = np.column_stack([a0, np.zeros_like(a0)]), np.column_stack([a1, np.zeros_like(a1)])
-    if ground.v0 is None:
-        n0, n1 = np.ones(time.size - 1), np.zeros(time.size - 1)
-    else:
-        n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
+    time, a0, a1, n0, n1 = planar_ground(ground)
     n = time.size
     rows = np.ascontiguousarray(rows, dtype=float)
     heats = bool(np.any(rows[:, KIND] == HEATED))
     if compiled is None:
         compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
     run = scalar.kernel(articulated) if compiled else articulated
-    work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
-    if not compiled:
-        work = tuple(w.tolist() for w in work)
     u, v, u1, v1, force = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     phase = np.zeros(n, dtype=np.int64)
     heat, temperature, mu = np.zeros((n, 4)), np.zeros((n, 2)), np.zeros((n, 2))
     samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
-    law = rows if compiled else rows.tolist()
     rigid = np.ascontiguousarray(rigid_rows, dtype=float)
-    alike = surfaces_alike(rows, L1, L3)
-    omega = math.sqrt(G / (L1 + L3))
-    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
-                    np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
-                    np.ascontiguousarray(n1, dtype=float), law, rigid if compiled else rigid.tolist(), alike, samples,
-                    float(L1), float(L3), G, 2.0 * float(zeta) * omega, float(RTOL), float(ATOL), *tableau(compiled),
-                    *work, corner.workspace(), np.zeros(corner.S * corner.N), np.zeros(corner.N),
-                    np.zeros(corner.N), np.zeros(corner.N), u, v, u1, v1, phase, force, mu, heat, temperature)
+    p = np.zeros(PARAMETERS)
+    p[LENGTH1], p[LENGTH3], p[GRAVITY], p[DAMPING] = L1, L3, G, 2.0 * float(zeta) * math.sqrt(G / (L1 + L3))
+    K, y, out, trial = scratch(compiled)
+    dop = (float(RTOL), float(ATOL), *tableau(compiled), K, out, trial, y)
+    radau = (corner.workspace(), np.zeros(corner.S * corner.N), np.zeros(corner.N), np.zeros(corner.N),
+             np.zeros(corner.N))
+    history = (u, v, u1, v1, phase, force, mu, heat, temperature)
+    status, k = run(time, a0, a1, n0, n1, samples, rows if compiled else rows.tolist(),
+                    rigid if compiled else rigid.tolist(), surfaces_alike(rows, L1, L3), p, dop, radau, history)
     if status == CHATTER:
         from .exact import chatter
 

@@ -24,14 +24,13 @@ from .integrator import (
     MIN_STEP,
     NONE,
     RTOL,
-    SIZE,
-    STAGES,
     STOP,
     TOO_SHORT,
     demand,
     integrate,
     law_coefficient,
     normal_ratio,
+    scratch,
     tableau,
 )
 
@@ -67,6 +66,27 @@ def breakaway(d0x, d0y, d1x, d1y, friction, m0, m1, end):
             return -1.0
         root = (-b + math.sqrt(disc)) / (2 * a)
     return root if 0.0 < root < end else -1.0
+
+
+@scalar.jit
+def interval_drive(a0, a1, n0, n1, k, tau):
+    """What drives a phase starting tau into sample interval k: the ground's acceleration b0 + b1 t and N/W
+    n0 + n1 t from there, (b0x, b0y, b1x, b1y, n0, n1)."""
+    return a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau, a1[k, 0], a1[k, 1], n0[k] + n1[k] * tau, n1[k]
+
+
+def planar_ground(ground: Ground):
+    """A ground as the two-component kernels take it: the times, the acceleration on each interval a0 + a1 (t - t_k)
+    in two components (one runs as the first of two, the second without load) and N/W n0 + n1 (t - t_k) (ones and
+    zeros without a vertical)."""
+    time, a0, a1 = ground.time, ground.a0, ground.a1
+    if a0.shape[1] == 1:
+        a0, a1 = np.column_stack([a0, np.zeros_like(a0)]), np.column_stack([a1, np.zeros_like(a1)])
+    if ground.v0 is None:
+        n0, n1 = np.ones(time.size - 1), np.zeros(time.size - 1)
+    else:
+        n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
+    return tuple(np.ascontiguousarray(x, dtype=float) for x in (time, a0, a1, n0, n1))
 
 
 @scalar.jit
@@ -129,9 +149,7 @@ def plane(time, a0, a1, n0, n1, law, samples, omega, zeta, friction, rtol, atol,
             phases += 1
             if phases > MAX_PHASES:
                 return CHATTER, k
-            b00, b01 = a0[k, 0] + a1[k, 0] * tau, a0[k, 1] + a1[k, 1] * tau
-            b10, b11 = a1[k, 0], a1[k, 1]
-            m0, m1 = n0[k] + n1[k] * tau, n1[k]
+            b00, b01, b10, b11, m0, m1 = interval_drive(a0, a1, n0, n1, k, tau)
             end = h - tau
             if not sliding:
                 # the breakaway value at the phase's start (it moves with N/W only under a pressure factor)
@@ -214,30 +232,20 @@ def plane_history(ground: Ground, omega, zeta, friction, compiled=None, law=UNIT
     record (``backend``), interpreted for a short one."""
     from .. import backend
 
-    time, a0, a1 = ground.time, ground.a0, ground.a1
-    if a0.shape[1] == 1:
-        a0, a1 = np.column_stack([a0, np.zeros_like(a0)]), np.column_stack([a1, np.zeros_like(a1)])
-    if ground.v0 is None:
-        n0, n1 = np.ones(time.size - 1), np.zeros(time.size - 1)
-    else:
-        n0, n1 = 1.0 + ground.v0 / G, ground.v1 / G
+    time, a0, a1, n0, n1 = planar_ground(ground)
     n = time.size
     if compiled is None:  # the plates' heat sums over the intervals before: about n / 200 case-steps more each
         heats = bool(np.any(np.asarray(law)[:, KIND] == HEATED))
         compiled = backend.choose(n - 1, INTERVAL_WORK + (n // 200 if heats else 0)) == "numba"
     run = scalar.kernel(plane) if compiled else plane
-    work = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
-    if not compiled:
-        work = tuple(w.tolist() for w in work)
+    K, y, out, trial = scratch(compiled)
     u, v, z = np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     stick = np.zeros(n, dtype=bool)
     heat, temperature, mu = np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n)
     samples = np.ones(n, dtype=bool) if samples is None else np.asarray(samples, dtype=bool)
     law = np.ascontiguousarray(law, dtype=float) if compiled else np.asarray(law, dtype=float).tolist()
-    status, k = run(np.ascontiguousarray(time, dtype=float), np.ascontiguousarray(a0, dtype=float),
-                    np.ascontiguousarray(a1, dtype=float), np.ascontiguousarray(n0, dtype=float),
-                    np.ascontiguousarray(n1, dtype=float), law, samples, float(omega), float(zeta), float(friction),
-                    float(RTOL), float(ATOL), *tableau(compiled), *work, u, v, z, stick, heat, temperature, mu)
+    status, k = run(time, a0, a1, n0, n1, law, samples, float(omega), float(zeta), float(friction), float(RTOL),
+                    float(ATOL), *tableau(compiled), K, y, out, trial, u, v, z, stick, heat, temperature, mu)
     if status == CHATTER:
         raise chatter(time[k])
     if status == FAILED:

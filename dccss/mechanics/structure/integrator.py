@@ -77,6 +77,13 @@ def tableau(compiled):
     return tuple(arrays) if compiled else tuple(a.tolist() for a in arrays)
 
 
+def scratch(compiled):
+    """DOP853's scratch for ``integrate``: its stages' derivatives K, a state y, a step's end and a stage's state;
+    lists (faster to index) interpreted."""
+    arrays = (np.zeros((STAGES + 1) * SIZE), np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE))
+    return arrays if compiled else tuple(a.tolist() for a in arrays)
+
+
 @scalar.jit
 def normal_ratio(t, load):
     """N/W at t (from the slide's start): n0 + n1 t, 0 where the superstructure lifts off."""
