@@ -43,8 +43,9 @@ half landing while the other is at its ring on the other side: no impact, the im
 A step in which the superstructure stops (its velocity reaching 0 or reversing) is cut likewise where the
 backward Euler step first stops it: at a reversal the friction's force jumps by 2 μ g, and a step across it
 leaves a velocity error of 2 μ g θ h (θ where in the step it fell), first order and erratic in h, which
-Richardson's extrapolation cannot remove (measured: without this, the extrapolated stroke converges at first
-order, 4e-6 m at 1000 steps a sample). Stick-slip starts need no such care: the velocity is continuous there.
+Richardson's extrapolation cannot remove (measured without it, the record × 2, μ = 0.05, no ring: the
+extrapolated stroke 8e-6, 7e-6, 4e-6 m off the exact one from 250, 500, 1000 steps a sample; with it 7e-8,
+8e-9, 2.5e-9 m). Stick-slip starts need no such care: the velocity is continuous there.
 
 Clipping the step at its end instead (``locate=False``: the step's u_j clipped to [-d_j, d_j], the velocity
 that of the clipped displacement, Moreau's catching-up, the rings' work counted as the impacts') restarts
@@ -60,17 +61,21 @@ then a frictionless pendulum's extrapolation converges at second order (3e-7, 8e
 **Accuracy.** The error is of first order in the step, smooth in it across the located events, with an erratic
 remainder of second order (a landing step's own error): ``richardson`` extrapolates from three runs at
 halved steps to second order and reports the spread between the two first-order extrapolations. On the
-synthetic record × 4 (20 s, DFP1, five or six impacts), from 250, 500 and 1000 steps a sample: spread 1e-7 to
-1e-6 m, the second-order result within 2e-8 to 3e-8 m of runs at 2000 and 4000 (``test_ring_reference``).
-Without rings it equals the library's closed forms to 3e-8 m and its speed-law rigid slider to 3e-9 m.
+synthetic record × 4 (20 s, DFP1, five or six impacts), from 250, 500 and 1000 steps a 0.01 s sample: spread
+3e-8 to 1.2e-7 m, the second-order result within 7e-9 to 7e-8 m of that from 500, 1000 and 2000
+(``test_ring_reference``'s table). Without rings it equals the library's closed forms to 3e-8 m (6 s of the
+record × 2), its speed-law rigid slider to 3e-9 m, and tests/series_reference.py's speed laws to its own
+accuracy (5e-7 m); a push into the ring, a release at the impact and a half handing the stroke to the other
+surface equal their closed forms to 1e-9 (times, s; speeds, m/s; strokes, m).
 
 **Energy** (per unit mass, m²/s²): the input ∫ -a_g u̇ dt equals the kinetic v² / 2, the potential Σ ω_j² u_j² / 2,
 the damping ∫ 2ζω u̇² dt, the friction Σ ∫ m_j |u̇_j| dt and the impacts' Σ v² / 2, plus the scheme's own loss
 (``scheme``: Σ ((ΔV)² + Σ ω_j² Δu_j²) / 2 over the steps), first order in h: the discrete balance closes to
 rounding, the extrapolated physical one to the scheme's accuracy.
 
-Compiled with Numba: a 20 s record at 1000 steps a 0.01 s sample (h = 1e-5 s) takes 1.5 s (rigid, Coulomb) to
-5 s (articulated, speed laws).
+Compiled with Numba: a 20 s record at 1000 steps a 0.01 s sample (h = 1e-5 s) takes about 2 s (rigid, Coulomb),
+3 s (articulated, Coulomb) to 5 s (articulated, speed laws); the three runs of an extrapolation from 250, 500
+and 1000 steps, 1.75 times that.
 """
 
 from __future__ import annotations
