@@ -17,14 +17,14 @@ extrapolations under R2 (``richardson``), and the run time of 1000 steps a sampl
 ==============================================  =======  ========  ======  ========  ======  ============
 slider                                          impacts  contacts  spread  |R2-R2'|  1000 s  impacts' |ΔR2|
 ==============================================  =======  ========  ======  ========  ======  ============
-rigid, μ = 0.03                                 6        6         1.2e-7  6.8e-9    2.1 s   3e-9 s, 1e-8 m/s
-rigid, μ = 0.05                                 5        5         3.2e-8  1.0e-8    1.7 s   1e-8 s, 6e-8 m/s
-articulated, L_j = 0.9098 m                     6        14        4.0e-8  8.1e-9    3.3 s   1e-8 s, 1e-8 m/s
-articulated, hinge 5 cm (L_j = 0.860, 0.960 m)  5        14        7.8e-8  7.0e-8    3.0 s   1e-7 s, 2e-7 m/s
+rigid, μ = 0.03                                 6        6         1.2e-7  6.8e-9    0.9 s   3e-9 s, 1e-8 m/s
+rigid, μ = 0.05                                 5        5         3.2e-8  1.0e-8    0.8 s   1e-8 s, 6e-8 m/s
+articulated, L_j = 0.9098 m                     6        14        4.0e-8  8.2e-9    1.1 s   1e-8 s, 1e-8 m/s
+articulated, hinge 5 cm (L_j = 0.860, 0.960 m)  5        14        7.8e-8  7.0e-8    1.0 s   1e-7 s, 2e-7 m/s
 ==============================================  =======  ========  ======  ========  ======  ============
 
 The library's own ring (``exact.ring_history``, the rigid slider) was within 5e-9 m (μ = 0.03) and 1.4e-8 m
-(μ = 0.05) of R2 there, impact for impact.
+(μ = 0.05) of R2 there, impact for impact (its ring force signed, this one's outward positive).
 """
 
 from __future__ import annotations
@@ -234,12 +234,12 @@ def test_the_energy_balance_closes_through_the_impacts():
 
 def test_equal_halves_are_the_rigid_slider_impacts_and_all():
     """Halves of L / 2 with equal frictions and rings at (L / 2) sin 11° slide in proportion and reach their rings
-    together: the rigid slider of L, to rounding (measured 4e-13 m), impact for impact."""
+    together: the rigid slider of L, to rounding (measured 4e-13 m, 1e-12 m/s), impact for impact."""
     time, a0, a1 = _ground(4.0, 6.0)
     one = rigid(time, a0, a1, L, 0.02, 0.04, D, substeps=100)
     two = series(time, a0, a1, L / 2, L / 2, 0.02, 0.04 * G, 0.04 * G, D / 2, D / 2, substeps=100)
-    assert len(one["impacts"]) == 3 and np.max(np.abs(one["impacts"] - two["impacts"])) < 1e-12
-    assert np.max(np.abs(one["u"] - two["u"])) < 1e-11 and np.array_equal(two["u_j"][:, 0], two["u_j"][:, 1])
+    assert len(one["impacts"]) == 3 and np.max(np.abs(one["impacts"] - two["impacts"])) < 1e-10
+    assert np.max(np.abs(one["u"] - two["u"])) < 1e-10 and np.array_equal(two["u_j"][:, 0], two["u_j"][:, 1])
     assert np.array_equal(one["at_ring"][:, 0], two["at_ring"][:, 0])
 
 
