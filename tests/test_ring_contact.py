@@ -94,3 +94,47 @@ def test_without_a_ring_reached_the_history_is_the_free_ones_bit_for_bit(mu):
     ringed = ring_history(time, a0, a1, OMEGA, 0.02, mu * G, RING, compiled=False)
     assert np.abs(ringed[0]).max() <= RING  # at the samples; it may reach the ring and leave it between them
     assert (ringed[5][:, 0].sum() >= 1) == (np.abs(free[0]).max() > RING)
+
+
+def test_a_demand_that_pulls_back_at_the_impact_takes_the_pad_off_the_ring_at_once():
+    """Pushed at 6 m/s² to 0.3 s, then 0.5 m/s²: at the impact the demand 0.5 - ω² d already pulls the pad back
+    past the friction, so it leaves the ring there (it was held to the next sample): the closed form from (d, 0)
+    at the impact."""
+    mu = 0.05
+    time = np.round(np.arange(0.0, 1.0001, 0.01), 12)
+    ag = np.where(time < 0.3 - 1e-9, -6.0, -0.5)
+    a0, a1 = ag.copy(), np.zeros_like(ag)
+    u, v, z, stick, held, impacts = ring_history(time, a0, a1, OMEGA, 0.0, mu * G, RING, compiled=False)
+    (k,) = np.nonzero(impacts[:, 0])
+    # the impact: the closed form from the state at 0.3 s under the load 0.5 - μ g
+    u3, v3 = u[30], v[30]
+    p = 0.5 - mu * G
+    hit = brentq(lambda t: p / OMEGA**2 + (u3 - p / OMEGA**2) * math.cos(OMEGA * t) + v3 / OMEGA
+                 * math.sin(OMEGA * t) - RING, 0.0, time[k[0]] - 0.3 + 1e-12, xtol=1e-15)
+    back = 0.5 + mu * G  # sliding back, z = -1, from (d, 0)
+    after = time > 0.3 + hit
+    expected = back / OMEGA**2 + (RING - back / OMEGA**2) * np.cos(OMEGA * (time[after] - 0.3 - hit))
+    assert u[after] == pytest.approx(expected, abs=1e-9)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("scale", "mu"), [(4.0, 0.03), (4.0, 0.05)])
+def test_the_ring_equals_the_independent_integration_to_a_micrometre(scale, mu):
+    """The synthetic record scaled to five or six impacts on DFP1's rigid slider (20 s): the stroke at every sample
+    against tests/ring_reference.py (implicit Moreau steps, each contact located, extrapolated from 250, 500 and
+    1000 steps a sample: its own spread below 2e-7 m), to 1e-6 m; the impacts as many, at the same speeds."""
+    from ring_reference import richardson, rigid
+
+    from dccss.records import read_at2
+
+    dt, acc = read_at2("config/studies/records/synthetic.AT2")
+    a = acc * G * scale
+    time, a0, a1 = dt * np.arange(a.size), a[:-1], np.diff(a) / dt
+    runs = [rigid(time, a0, a1, L, 0.02, mu, RING, substeps=n) for n in (250, 500, 1000)]
+    reference = richardson(runs)
+    assert reference["spread"] < 2e-7
+    u, v, z, stick, held, impacts = ring_history(time, np.append(a0, a[-1]), np.append(a1, 0.0), OMEGA, 0.02,
+                                                 mu * G, RING, compiled=False)
+    assert np.max(np.abs(u - reference["u"])) < 1e-6
+    assert impacts[:, 0].sum() == len(runs[-1]["impacts"]) >= 5
+    assert impacts[impacts[:, 0] > 0, 1] == pytest.approx(reference["impacts"][:, 1], abs=1e-6)  # one an interval

@@ -226,6 +226,12 @@ def line(time, a0, a1, omega, zeta, friction, ring, u, v, z, stick, held, impact
                 impacts[k + 1, 2] += 0.5 * speed * speed
                 x, w, at, sliding = sign * ring, 0.0, sign, False
                 tau += when
+                # a demand that already pulls the pad back past the friction takes it off the ring at once
+                lower = -math.inf if at < 0.0 else -friction
+                upper = math.inf if at > 0.0 else friction
+                direction = leaving(-(b0 + b1 * when) - omega**2 * x, -b1, lower, upper, True, True)
+                if direction != 0.0:
+                    sliding, sign, at = True, direction, 0.0
                 continue
             if not stopped:
                 tau = h
