@@ -3,19 +3,23 @@
 The device is two pendulums in series (``series``): surface j slides or holds by its own law, and the
 phases are those of the exact one-component solution:
 
-* **at rest**, surface j holds while |f - p_j| <= μ̄_j(0) (1 + RTOL), f = -a_g / (g N/W) the force per
-  unit normal force the friction must supply, p_j = u_j / L_j; rest ends where f, the ratio of two
-  straight lines in t, leaves a circle: the first root of a quadratic (``circular.breakaway``), exact.
-  The surface whose circle it leaves slides, both where the other is within 1e-9 of its own;
-* **one surface slides** (j), the other holds: the rigid slider's circular interaction (``integrator``,
-  DOP853) with the pendulum length L_j and surface j's law, the stroke's origin at the other surface's
-  displacement; it ends at a stop (|u̇| falls to REST_SPEED; a start from rest takes the friction along
-  the force until |u̇| reaches START_SPEED, as the rigid slider's), or where F/N reaches the other
-  surface's circle (YIELD: both slide);
-* **both slide**: ``corner`` (Radau IIA on the state (u, u̇, δ, σ)), until |u̇| falls to REST_SPEED or
-  one surface stops (σ reaches 0 or 1). Both surfaces starting from rest together (a tie) start as the
-  rigid slider of their proportional split until |u̇| reaches START_SPEED; surfaces alike (their μ̄ equal
+* **at rest** (``_from_rest``), surface j holds while |f - p_j| <= μ̄_j(0) (1 + RTOL), f = -a_g / (g N/W)
+  the force per unit normal force the friction must supply, p_j = u_j / L_j; rest ends where f, the ratio
+  of two straight lines in t, leaves a circle: the first root of a quadratic (``circular.breakaway``),
+  exact. The surface whose circle it leaves slides, both where the other is within 1e-9 of its own;
+* **one surface slides** (j, ``_alone``), the other holds: the rigid slider's circular interaction
+  (``integrator``, DOP853) with the pendulum length L_j and surface j's law, the stroke's origin at the
+  other surface's displacement; it ends at a stop (|u̇| falls to REST_SPEED; a start from rest takes the
+  friction along the force until |u̇| reaches START_SPEED, as the rigid slider's), or where F/N reaches
+  the other surface's circle (YIELD: both slide; where no split σ in [0, 1] balances the hinge, the
+  surface that would slide backwards holds);
+* **both slide** (``_sliding_both``): ``corner`` (Radau IIA on the state (u, u̇, δ, σ)), until |u̇| falls
+  to REST_SPEED or one surface stops (σ reaches 0 or 1, at a step's end or inside it, found where a step
+  to it goes past it). Both surfaces starting from rest together (a tie) start as the rigid slider of
+  their proportional split until |u̇| reaches START_SPEED (``_together``); surfaces alike (their μ̄ equal
   wherever they slide in proportion: ``surfaces_alike``) slide as the rigid slider throughout, exactly.
+
+The phases hand on a state record (UX ... TAU) from one to the next.
 
 Under a temperature law each surface's plate heats by its own flux, from its own slider's travel
 (``heat.plate_temperature``), at the record's samples. Written in the scalar subset Numba compiles: the
