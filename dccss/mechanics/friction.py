@@ -224,6 +224,17 @@ def row(law: Law, v: dict, weight=1.0, ratio=1.0, factor=1.0) -> np.ndarray:
     return r
 
 
+#: the largest x whose exp(x) is a finite double (ln of the largest double)
+EXP_MAX = 709.782712893384
+
+
+@scalar.jit
+def _exp(x):
+    """exp(x), inf past the largest double as compiled code gives it (Python's math.exp raises there: a Newton
+    trial at a large negative speed made an interpreted run fail where the compiled one went on)."""
+    return math.inf if x > EXP_MAX else math.exp(x)
+
+
 @scalar.jit
 def surface_mu(r, speed, normal, temperature):
     """μ of one surface's law (its row ``r``) at the surface's sliding ``speed`` (m/s), N/W = ``normal``
@@ -232,18 +243,18 @@ def surface_mu(r, speed, normal, temperature):
     if kind == 0.0:
         return r[4]
     if kind == 1.0:
-        return r[5] - (r[5] - r[4]) * math.exp(-r[6] * speed)
+        return r[5] - (r[5] - r[4]) * _exp(-r[6] * speed)
     pressure = r[7] * normal
     if kind == 2.0:
         fast = r[5] - r[8] * math.tanh(r[9] * pressure) if pressure > 0.0 else r[5]
-        return fast - (fast - r[4]) * math.exp(-r[6] * speed)
+        return fast - (fast - r[4]) * _exp(-r[6] * speed)
     mu = r[4]
     if r[11] != 0.0:
         mu = mu * 0.7 ** (0.02 * (pressure - r[10]) / 1e6)
     if r[13] != 0.0:
         mu = mu * (0.789 * (0.7 ** (temperature / 50.0) + 0.4))
     if r[12] != 0.0:
-        mu = mu * (1.0 - 0.5 * math.exp(-r[6] * speed))
+        mu = mu * (1.0 - 0.5 * _exp(-r[6] * speed))
     return mu
 
 
@@ -265,7 +276,7 @@ def surface_mu_slopes(r, speed, normal, temperature):
     kind = r[0]
     if kind == 0.0:
         return 0.0, 0.0
-    decay = math.exp(-r[6] * speed)
+    decay = _exp(-r[6] * speed)
     if kind == 1.0:
         return (r[5] - r[4]) * r[6] * decay, 0.0
     pressure = r[7] * normal

@@ -35,9 +35,32 @@ import numpy as np
 from .. import scalar
 from ..friction import FACTOR, KIND, MU, RATIO, T0, WEIGHT, device_mu, surface_mu
 from . import corner
-from .corner import (B0X, B0Y, B1X, B1Y, CONTRACTION, DAMPING, ERROR, GOES_ON, GRAVITY, KEPT, LAST, LENGTH1, LENGTH3,
-                     MASS, MEMO, N0, N1, PARAMETERS, PREVIOUS, RHS, SPAN, TEMPERATURE1, TEMPERATURE3)
 from .circular import HEATED, breakaway, interval_drive, planar_ground
+from .corner import (
+    B0X,
+    B0Y,
+    B1X,
+    B1Y,
+    CONTRACTION,
+    DAMPING,
+    ERROR,
+    GOES_ON,
+    GRAVITY,
+    KEPT,
+    LAST,
+    LENGTH1,
+    LENGTH3,
+    MASS,
+    MEMO,
+    N0,
+    N1,
+    PARAMETERS,
+    PREVIOUS,
+    RHS,
+    SPAN,
+    TEMPERATURE1,
+    TEMPERATURE3,
+)
 from .exact import CHATTER, DONE, FAILED, MAX_PHASES
 from .heat import plate_temperature
 from .inputs import G

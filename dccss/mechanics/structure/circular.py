@@ -43,13 +43,13 @@ INTERVAL_WORK = 25
 
 @scalar.jit
 def breakaway(d0x, d0y, d1x, d1y, friction, m0, m1, end):
-    """The first tau in (0, end) where |d0 + d1 tau| reaches ``friction`` (m0 + m1 tau) (a quadratic;
-    m0 + m1 tau = N/W >= 0 on the interval), or -1."""
+    """The first tau in [0, end) where |d0 + d1 tau| reaches ``friction`` (m0 + m1 tau) (a quadratic;
+    m0 + m1 tau = N/W >= 0 on the interval), or -1: 0 where it is past it already, or at it and growing."""
     f0, f1 = friction * m0, friction * m1
     a = d1x * d1x + d1y * d1y - f1 * f1
     b = 2 * (d0x * d1x + d0y * d1y - f0 * f1)
     c = (d0x * d0x + d0y * d0y) - f0 * f0
-    if c > 0.0:
+    if c > 0.0 or (c == 0.0 and b > 0.0):  # at the limit and growing: the root at 0 itself
         return 0.0
     if a == 0.0:
         if b > 0.0:  # a straight line from c <= 0
