@@ -136,7 +136,10 @@ def test_every_how_to_block_runs_or_says_why_not():
     assert unrunnable == []
 
 
-HOW_TO_RUNS = sorted({p.name for p, m in _how_to_blocks() if m["why"] is None and m["lang"] in ("bash", "python")})
+#: how-to pages whose command is a shipped study's run, as written: their blocks run on that study's shared run
+SHIPPED_RUN = {"intensity-and-fragility.md": "ida"}
+HOW_TO_RUNS = sorted({p.name for p, m in _how_to_blocks() if m["why"] is None and m["lang"] in ("bash", "python")}
+                     - set(SHIPPED_RUN))
 
 
 @pytest.mark.slow
@@ -167,6 +170,22 @@ def test_how_to_runs(page, tmp_path):
             assert run.returncode == 0, f"{page}:\n{body}\n{run.stdout[-1000:]}{run.stderr[-2000:]}"
             ran += 1
     assert ran >= 1
+
+
+def test_the_intensity_how_to_runs_on_the_shipped_study(shipped_study):
+    """The intensity how-to's command is the shipped study's run (tests/test_workflow.py compares its figures with
+    the committed ones): its blocks run on that run, the command as written."""
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
+           "MPLBACKEND": "Agg"}
+    work = shipped_study("ida")
+    commands = [m for _, m in _how_to_blocks("intensity-and-fragility.md") if m["why"] is None]
+    assert [m["lang"] for m in commands] == ["yaml", "bash", "python"]
+    assert commands[0]["body"].strip() == '--8<-- "config/studies/ida.yaml"'
+    assert commands[1]["body"].strip() == "snakemake --profile profiles/default --configfile config/studies/ida.yaml"
+    run = subprocess.run([sys.executable, "-c", commands[2]["body"]], cwd=work, env=env, capture_output=True,
+                         text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert float(run.stdout) > 0.0
 
 
 def test_how_to_case_files_are_valid(tmp_path):
