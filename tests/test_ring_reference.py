@@ -267,7 +267,7 @@ CASES = {
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("case", [c for c in CASES if CASES[c][0] == "series"])  # the rigid ones: test_ring_contact
 def test_on_the_record_the_extrapolations_converge_through_five_impacts(case):
     """DFP1 under the record × 4 (20 s): five or six impacts, as many at each step; the second-order
     extrapolation from 250, 500 and 1000 steps a sample agrees with that from 500, 1000 and 2000 within 2e-7 m
@@ -309,7 +309,7 @@ def test_far_from_its_ring_a_speed_law_rigid_slider_is_the_librarys():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("hinge", [0.0, 0.05])
+@pytest.mark.parametrize("hinge", [0.05])  # unequal pendulums: equal ones are its special case
 def test_far_from_their_rings_speed_laws_agree_with_the_series_reference(hinge):
     """Speed laws on each surface at its own speed (μ from 0.02 to 0.04 on RB1, 0.04 to 0.08 on RB3, rate 20 s/m,
     μ̄_j = R^j / L_j μ_j(R^j / L_j |u̇_j|)), 8 s of the record × 2, no ring reached: tests/series_reference.py's
