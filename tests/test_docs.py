@@ -219,12 +219,16 @@ def test_readme_is_short_and_its_links_resolve():
 
 def test_readme_reaches_the_asked_pages():
     """From the README, one link reaches each of: how to run a record suite, what `capacity: stop` does,
-    why the paper's Eq. 30 is +0.248 m (two clicks at most: the README, then the page)."""
+    why the paper's Eq. 30 is +0.248 m (two clicks at most: the README, then the page), and every how-to guide
+    and explanation of the site (the intensity how-to, the friction and performance explanations were missing)."""
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     pages = {(ROOT / link).resolve() for link in re.findall(r"\]\((docs/[^)#\s]+)", text)}
     wanted = {"record suite": ("## Record suites", DOCS / "how-to/records.md"),
               "capacity: stop": ("| `stop` |", DOCS / "reference/failures.md"),
               "Eq. 30": ("+0.248", DOCS / "explanation/errata.md")}
+    # every how-to and explanation page the site's navigation lists
+    nav = re.findall(r":\s*((?:how-to|explanation)/[\w-]+\.md)", (ROOT / "mkdocs.yml").read_text(encoding="utf-8"))
+    wanted.update({name: ("# ", DOCS / name) for name in nav})
     for what, (needle, page) in wanted.items():
         assert page.resolve() in pages, what
         assert needle in page.read_text(encoding="utf-8"), what
