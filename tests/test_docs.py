@@ -69,20 +69,25 @@ def _tutorial_blocks():
             yield page, match
 
 
-def test_every_tutorial_block_runs_or_says_why_not():
-    """Every code block of a tutorial is run by test_tutorial_runs (yaml with a '# file:' line is written,
-    bash and python run), or is marked illustrative with the reason."""
-    unrunnable = []
-    for page, m in _tutorial_blocks():
+def _unrunnable(blocks) -> list:
+    """The blocks that neither run (yaml with a '# file:' line or a snippet include, bash, python) nor say why not
+    (an illustrative block's reason, of four words at least)."""
+    out = []
+    for page, m in blocks:
         lang, body, why = m["lang"], m["body"], m["why"]
         if why is not None:
             assert len(why.split()) >= 4, f"{page.name}: the reason for an illustrative block is too short"
-            continue
-        if lang == "yaml" and not (body.startswith("# file: ") or body.startswith("--8<--")):
-            unrunnable.append((page.name, body[:40]))
+        elif lang == "yaml" and not (body.startswith("# file: ") or body.startswith("--8<--")):
+            out.append((page.name, body[:40]))
         elif lang not in ("yaml", "bash", "python"):
-            unrunnable.append((page.name, lang))
-    assert unrunnable == []
+            out.append((page.name, lang))
+    return out
+
+
+def test_every_tutorial_block_runs_or_says_why_not():
+    """Every code block of a tutorial is run by test_tutorial_runs (yaml with a '# file:' line is written,
+    bash and python run), or is marked illustrative with the reason."""
+    assert _unrunnable(_tutorial_blocks()) == []
 
 
 @pytest.mark.parametrize("page", [pytest.param(p.name, marks=[pytest.mark.slow] if p.name == "one-case.md" else [])
@@ -123,17 +128,7 @@ def _how_to_blocks(page=None):
 def test_every_how_to_block_runs_or_says_why_not():
     """Every code block of a how-to guide is run by test_how_to_runs (yaml with a '# file:' line is written,
     bash and python run, a snippet include is the file it includes), or is marked illustrative with the reason."""
-    unrunnable = []
-    for page, m in _how_to_blocks():
-        lang, body, why = m["lang"], m["body"], m["why"]
-        if why is not None:
-            assert len(why.split()) >= 4, f"{page.name}: the reason for an illustrative block is too short"
-            continue
-        if lang == "yaml" and not (body.startswith("# file: ") or body.startswith("--8<--")):
-            unrunnable.append((page.name, body[:40]))
-        elif lang not in ("yaml", "bash", "python"):
-            unrunnable.append((page.name, lang))
-    assert unrunnable == []
+    assert _unrunnable(_how_to_blocks()) == []
 
 
 #: how-to pages whose command is a shipped study's run, as written: their blocks run on that study's shared run
