@@ -599,10 +599,8 @@ def case_from(mapping, base: Path = Path(".")) -> Case:
         problems.check("structure", _device_friction, structure, geometry)
     if kind == "articulated" and geometry is not None:
         problems.check("slider", _hinge, geometry, hinge)
-    if not problems.failed("slider"):  # the friction's meaning depends on the slider's kind
-        friction = problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None)
-    else:
-        friction = None
+    friction = (None if problems.failed("slider") else  # its meaning depends on the slider's kind
+                problems.check("friction", _imposed_friction, m["friction"], kind, m["structure"] is not None))
     if excitation is not None and has_vertical(excitation) and m["structure"] is None:
         problems.add("excitation", VERTICAL_WITHOUT_STRUCTURE)
     model = problems.check("model", choice, m["model"], "model", registry.names()) if "model" in m else None
